@@ -1,0 +1,134 @@
+#include "cosim/commands.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/image_io.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/parallel.hpp"
+#include "refmodel/volume/loaders.hpp"
+
+namespace voxcast::cosim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string with_suffix(const std::string& path, const std::string& suffix) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+struct View {
+  ref::CameraPose pose;
+  std::string suffix;
+};
+
+std::vector<View> views_of(const ref::Scene& scene) {
+  const std::vector<ref::CameraPose> poses = ref::frame_poses(scene.camera, scene.render.frames);
+  std::vector<View> views;
+  for (std::size_t f = 0; f < poses.size(); ++f) {
+    std::ostringstream frame;
+    if (poses.size() > 1) frame << '_' << std::setw(4) << std::setfill('0') << f;
+    if (scene.camera.stereo_deg > 0.0) {
+      const double half = 0.5 * scene.camera.stereo_deg;
+      views.push_back({ref::rotate_about_up(poses[f], -half), frame.str() + "_left"});
+      views.push_back({ref::rotate_about_up(poses[f], +half), frame.str() + "_right"});
+    } else {
+      views.push_back({poses[f], frame.str()});
+    }
+  }
+  return views;
+}
+
+void write_report(const std::string& path, const ref::Scene& scene, const RenderSummary& s) {
+  nlohmann::json j;
+  j["scene"] = scene.origin;
+  j["engine"] = "refmodel";
+  j["volume"] = {{"source", s.volume_source}, {"dims", s.dims}, {"bits", s.bits}};
+  j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
+                {"mode", ref::to_string(scene.render.mode)},
+                {"projection", ref::to_string(scene.camera.projection)},
+                {"oversampling", scene.render.oversampling},
+                {"ert_threshold", scene.render.ert_threshold}};
+  j["stats"] = {{"rays", s.stats.rays}, {"rays_hit", s.stats.rays_hit},
+                {"rays_terminated_early", s.stats.rays_terminated_early},
+                {"samples", s.stats.samples}};
+  j["timing"] = {{"load_seconds", s.load_seconds}, {"render_seconds", s.render_seconds},
+                 {"threads", s.threads}};
+  j["written"] = s.written;
+  std::ofstream out(path);
+  if (!out) throw Error(path + ": cannot write the report");
+  out << j.dump(2) << "\n";
+}
+
+}  // namespace
+
+RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) {
+  RenderSummary s;
+  for (const std::string& out : options.outputs) check_image_path(out);
+  const auto t_load = Clock::now();
+  const ref::Volume volume = ref::load_volume(
+      scene.volume.source, scene.base_dir, scene.volume.raw ? &*scene.volume.raw : nullptr);
+  ref::validate_against_volume(scene, volume);
+  const ref::GradientField gradients = ref::compute_gradients(volume, scene.volume.gradient);
+  s.load_seconds = seconds_since(t_load);
+  s.volume_source = volume.source;
+  s.dims = volume.dims;
+  s.bits = volume.bits;
+  s.threads = ref::worker_count(scene.render.threads);
+
+  for (const std::string& out : options.outputs) {
+    const std::filesystem::path dir = std::filesystem::path(out).parent_path();
+    if (!dir.empty()) std::filesystem::create_directories(dir);
+  }
+  const auto t_render = Clock::now();
+  for (const View& view : views_of(scene)) {
+    const ref::RenderInputs in = ref::make_render_inputs(scene, volume, gradients, view.pose);
+    ref::FrameStats fs;
+    const ref::Image img = ref::render_image(in, scene.render.threads, &fs);
+    s.stats.samples += fs.samples;
+    s.stats.rays += fs.rays;
+    s.stats.rays_hit += fs.rays_hit;
+    s.stats.rays_terminated_early += fs.rays_terminated_early;
+    for (const std::string& out : options.outputs) {
+      const std::string path = with_suffix(out, view.suffix);
+      write_image(path, img, scene.render.background);
+      s.written.push_back(path);
+    }
+  }
+  s.render_seconds = seconds_since(t_render);
+  if (!options.report_json.empty()) {
+    write_report(options.report_json, scene, s);
+    s.written.push_back(options.report_json);
+  }
+  return s;
+}
+
+void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummary& s) {
+  const double rays = static_cast<double>(std::max<std::uint64_t>(s.stats.rays, 1));
+  os << std::fixed << std::setprecision(2);
+  os << "scene    " << scene.origin << "\n"
+     << "volume   " << s.volume_source << "  " << s.dims[0] << "x" << s.dims[1] << "x" << s.dims[2]
+     << ", " << s.bits << "-bit voxels (loaded in " << s.load_seconds << " s)\n"
+     << "image    " << scene.render.width << "x" << scene.render.height << " "
+     << ref::to_string(scene.render.mode) << ", " << ref::to_string(scene.camera.projection)
+     << ", oversampling " << scene.render.oversampling << ", ERT "
+     << scene.render.ert_threshold << "\n"
+     << "engine   refmodel (double precision), " << s.threads << " threads, "
+     << s.render_seconds << " s\n"
+     << "rays     " << 100.0 * static_cast<double>(s.stats.rays_hit) / rays << "% hit the volume, "
+     << 100.0 * static_cast<double>(s.stats.rays_terminated_early) / rays << "% terminated early, "
+     << std::setprecision(1) << static_cast<double>(s.stats.samples) / 1e6 << " M samples\n";
+  for (const std::string& w : s.written) os << "wrote    " << w << "\n";
+}
+
+}  // namespace voxcast::cosim

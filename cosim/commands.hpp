@@ -1,0 +1,38 @@
+// The subcommands of `voxcast`, callable from main() and from tests.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "refmodel/render/raycaster.hpp"
+#include "refmodel/scene/scene.hpp"
+
+namespace voxcast::cosim {
+
+struct RenderOptions {
+  std::vector<std::string> outputs;  // each .png or .exr; the same frames go to each
+  std::string report_json;           // optional JSON report path
+};
+
+// What one `render` did, for the summary line and the JSON report.
+struct RenderSummary {
+  std::string volume_source;
+  std::array<int, 3> dims{};
+  int bits = 0;
+  double load_seconds = 0.0;
+  double render_seconds = 0.0;
+  int threads = 0;
+  ref::FrameStats stats;  // summed over every frame and eye
+  std::vector<std::string> written;
+};
+
+// Loads the scene's volume, renders every frame (camera.path) and eye
+// (camera.stereo_deg) with the reference ray caster and writes the images.
+// Frame f of a path gets "_NNNN" before the extension, stereo eyes "_left" and
+// "_right".
+RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options);
+
+void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummary& s);
+
+}  // namespace voxcast::cosim

@@ -1,0 +1,78 @@
+#include "cosim/image_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "refmodel/error.hpp"
+
+namespace voxcast::cosim {
+namespace {
+
+std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+void write_pixels(const std::string& path, const OIIO::ImageSpec& spec, const void* data) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw Error(path + ": cannot write images of this type (" + OIIO::geterror() + ")");
+  if (!out->open(path, spec) || !out->write_image(spec.format, data) || !out->close())
+    throw Error(path + ": " + out->geterror());
+}
+
+std::uint8_t to_8bit(double v) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+}
+
+}  // namespace
+
+void check_image_path(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext != ".png" && ext != ".exr")
+    throw Error(path + ": unsupported image type \"" + ext + "\" (use .exr or .png)");
+}
+
+void write_image(const std::string& path, const ref::Image& image, const glm::dvec3& background) {
+  const std::string ext = extension_of(path);
+  const std::size_t n = image.pixels.size();
+  if (ext == ".exr") {
+    std::vector<float> rgba(4 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 4; ++c) rgba[4 * i + c] = static_cast<float>(image.pixels[i][c]);
+    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
+    spec.attribute("compression", "zip");
+    write_pixels(path, spec, rgba.data());
+  } else if (ext == ".png") {
+    std::vector<std::uint8_t> rgb(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::dvec4& p = image.pixels[i];
+      for (int c = 0; c < 3; ++c) rgb[3 * i + c] = to_8bit(p[c] + (1.0 - p.a) * background[c]);
+    }
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+    write_pixels(path, spec, rgb.data());
+  } else {
+    check_image_path(path);
+  }
+}
+
+ref::Image read_image(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path + ": cannot read image (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> data(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
+    throw Error(path + ": " + in->geterror());
+  ref::Image img(spec.width, spec.height);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c)
+      img.pixels[i][c] = c < spec.nchannels ? data[i * spec.nchannels + c] : 1.0;
+  return img;
+}
+
+}  // namespace voxcast::cosim

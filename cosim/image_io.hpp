@@ -1,0 +1,24 @@
+// Image output. `.exr`: 32-bit float RGBA, premultiplied, the volume alone (the
+// background is not composited, so the alpha channel stays meaningful for
+// analysis and compositing). `.png`: 8-bit RGB for people, composited over the
+// scene's background. Written through OpenImageIO.
+#pragma once
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "refmodel/render/image.hpp"
+
+namespace voxcast::cosim {
+
+// Throws voxcast::Error unless `path` ends in .png or .exr (checked before a
+// render starts, so a typo does not cost a whole render).
+void check_image_path(const std::string& path);
+
+void write_image(const std::string& path, const ref::Image& image, const glm::dvec3& background);
+
+// Reads an image written by write_image (any format OpenImageIO reads) as RGBA.
+ref::Image read_image(const std::string& path);
+
+}  // namespace voxcast::cosim

@@ -1,0 +1,114 @@
+#include "refmodel/precision/presets.hpp"
+
+#include <cmath>
+
+#include "refmodel/error.hpp"
+
+namespace voxcast {
+
+PrecisionProfile preset_profile(const std::string& name) {
+  PrecisionProfile p;  // the struct's defaults are the vizard2 card
+  if (name == "vizard2") return p;
+  if (name == "balanced") {
+    p.addr_bits = 10;
+    p.pos_frac_bits = 18;
+    p.dir_frac_bits = 22;
+    p.rsqrt_seed_bits = 8;
+    p.t_frac_bits = 14;
+    p.weight_bits = 8;
+    p.value_bits = 12;
+    p.gradient_bits = 16;
+    p.gradient_frac_bits = 3;
+    p.sample_frac_bits = 8;
+    p.tf_addr_bits = 12;
+    p.color_bits = 12;
+    p.alpha_bits = 16;
+    p.k_bits = 12;
+    p.rm_res = 64;
+    p.rm_frac_bits = 12;
+    p.rm_int_bits = 2;
+    p.shade_bits = 12;
+    p.acc_bits = 16;
+    p.out_bits = 8;
+    return p;
+  }
+  if (name == "precise") {
+    p.addr_bits = 10;
+    p.pos_frac_bits = 22;
+    p.dir_frac_bits = 24;
+    p.rsqrt_seed_bits = 10;
+    p.t_frac_bits = 16;
+    p.weight_bits = 10;
+    p.value_bits = 16;
+    p.gradient_bits = 20;
+    p.gradient_frac_bits = 3;
+    p.sample_frac_bits = 10;
+    p.tf_addr_bits = 14;
+    p.color_bits = 16;
+    p.alpha_bits = 20;
+    p.k_bits = 16;
+    p.rm_res = 128;
+    p.rm_frac_bits = 16;
+    p.rm_int_bits = 2;
+    p.shade_bits = 16;
+    p.acc_bits = 20;
+    p.out_bits = 8;
+    return p;
+  }
+  std::string list;
+  for (const auto& n : preset_names()) list += (list.empty() ? "" : ", ") + n;
+  throw Error("unknown precision profile \"" + name + "\" (presets: " + list + ")");
+}
+
+std::vector<std::string> preset_names() { return {"vizard2", "balanced", "precise"}; }
+
+const std::vector<ProfileField>& profile_fields() {
+  using P = PrecisionProfile;
+  static const std::vector<ProfileField> f = {
+      {"addr_bits", &P::addr_bits, 1, 12, "voxel index bits per axis (volumes up to 2^addr_bits)"},
+      {"pos_frac_bits", &P::pos_frac_bits, 4, 24, "fraction bits of sample positions"},
+      {"dir_frac_bits", &P::dir_frac_bits, 8, 24, "fraction bits of ray directions in ray setup"},
+      {"rsqrt_seed_bits", &P::rsqrt_seed_bits, 3, 12, "seed-table address bits of the rsqrt unit"},
+      {"t_frac_bits", &P::t_frac_bits, 4, 20, "fraction bits of clip parameters (in samples)"},
+      {"weight_bits", &P::weight_bits, 1, 10, "interpolation weight bits (6-bit weight addressing)"},
+      {"value_bits", &P::value_bits, 1, 16, "voxel value field bits"},
+      {"gradient_bits", &P::gradient_bits, 2, 24, "bits per stored gradient component, sign included"},
+      {"gradient_frac_bits", &P::gradient_frac_bits, 0, 8, "fraction bits of stored gradients"},
+      {"sample_frac_bits", &P::sample_frac_bits, 0, 12, "fraction bits of interpolated samples"},
+      {"tf_addr_bits", &P::tf_addr_bits, 1, 16, "classification table address bits"},
+      {"color_bits", &P::color_bits, 1, 16, "bits of r, g, b in the classification table"},
+      {"alpha_bits", &P::alpha_bits, 1, 24, "bits of the opacity-corrected alpha"},
+      {"k_bits", &P::k_bits, 1, 16, "bits of ka, kd, ks"},
+      {"rm_res", &P::rm_res, 1, 256, "reflectance-map cells per cube-face edge"},
+      {"rm_frac_bits", &P::rm_frac_bits, 1, 20, "fraction bits of reflectance-map entries"},
+      {"rm_int_bits", &P::rm_int_bits, 0, 4, "integer bits of reflectance-map entries"},
+      {"shade_bits", &P::shade_bits, 1, 20, "fraction bits of shaded colours"},
+      {"acc_bits", &P::acc_bits, 2, 24, "fraction bits of the colour and opacity accumulators"},
+      {"out_bits", &P::out_bits, 1, 16, "bits per output channel"},
+  };
+  return f;
+}
+
+void check_profile_fits(const PrecisionProfile& p, const ref::Volume& v,
+                        double max_gradient_component) {
+  if (v.bits > p.value_bits)
+    throw Error("precision.value_bits = " + std::to_string(p.value_bits) +
+                " cannot hold the volume's " + std::to_string(v.bits) + "-bit values (" +
+                v.source + ")");
+  static const char* const kAxis[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a)
+    if (v.dims[a] > (1 << p.addr_bits))
+      throw Error("precision.addr_bits = " + std::to_string(p.addr_bits) + " cannot address " +
+                  std::to_string(v.dims[a]) + " voxels along " + kAxis[a] + " (at most " +
+                  std::to_string(1 << p.addr_bits) + ")");
+  // A gradient component must fit its signed field with its fraction bits.
+  const double limit = std::ldexp(1.0, p.gradient_bits - 1 - p.gradient_frac_bits);
+  if (max_gradient_component >= limit)
+    throw Error("precision.gradient_bits = " + std::to_string(p.gradient_bits) + " (with " +
+                std::to_string(p.gradient_frac_bits) +
+                " fraction bits) cannot hold the volume's gradient component " +
+                std::to_string(max_gradient_component) + " (limit " + std::to_string(limit) +
+                ")");
+}
+
+}  // namespace voxcast

@@ -1,0 +1,222 @@
+#include "refmodel/render/raycaster.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "refmodel/parallel.hpp"
+
+namespace voxcast::ref {
+
+Vec3 normalised_spacing(const Volume& volume) {
+  const double smallest = std::min({volume.spacing.x, volume.spacing.y, volume.spacing.z});
+  return volume.spacing / smallest;
+}
+
+RenderVolume make_render_volume(const Volume& volume, const GradientField& gradients,
+                                const std::optional<Crop>& crop) {
+  RenderVolume rv;
+  rv.volume = &volume;
+  rv.gradients = &gradients;
+  rv.world_scale = normalised_spacing(volume);
+  Vec3 lo{0.0}, hi{volume.dims[0] - 1.0, volume.dims[1] - 1.0, volume.dims[2] - 1.0};
+  if (crop) {
+    lo = Vec3(crop->lo[0], crop->lo[1], crop->lo[2]);
+    hi = Vec3(crop->hi[0], crop->hi[1], crop->hi[2]);
+  }
+  rv.index_box = Box{lo, hi};
+  rv.world_box = Box{lo * rv.world_scale, hi * rv.world_scale};
+  return rv;
+}
+
+// --- Interpolation ------------------------------------------------------------
+
+namespace {
+// Lower neighbour index and weight along one axis; a one-voxel axis has both
+// neighbours at 0, and a position on the last voxel uses the last cell with
+// weight 1, so no index ever leaves the grid.
+struct AxisWeight {
+  int i0, i1;
+  double f;
+};
+AxisWeight axis_weight(double x, int n) {
+  if (n == 1) return {0, 0, 0.0};
+  const double c = std::clamp(x, 0.0, n - 1.0);
+  const int i0 = std::min(static_cast<int>(std::floor(c)), n - 2);
+  return {i0, i0 + 1, c - i0};
+}
+}  // namespace
+
+Sample interpolate(const Volume& volume, const GradientField& gradients, const Vec3& p) {
+  const AxisWeight ax = axis_weight(p.x, volume.dims[0]);
+  const AxisWeight ay = axis_weight(p.y, volume.dims[1]);
+  const AxisWeight az = axis_weight(p.z, volume.dims[2]);
+  Sample s;
+  for (int k = 0; k < 8; ++k) {
+    const int x = (k & 1) ? ax.i1 : ax.i0;
+    const int y = (k & 2) ? ay.i1 : ay.i0;
+    const int z = (k & 4) ? az.i1 : az.i0;
+    const double w = ((k & 1) ? ax.f : 1.0 - ax.f) * ((k & 2) ? ay.f : 1.0 - ay.f) *
+                     ((k & 4) ? az.f : 1.0 - az.f);
+    const std::size_t i = volume.index(x, y, z);
+    s.value += w * volume.data[i];
+    s.gradient += w * Vec3(gradients.g[i]);
+  }
+  return s;
+}
+
+// --- Shading ------------------------------------------------------------------
+
+ShadingSetup make_shading_setup(const std::vector<Light>& lights, const Vec3& view_direction,
+                                double shininess) {
+  ShadingSetup s;
+  s.shininess = shininess;
+  const Vec3 v = -glm::normalize(view_direction);  // towards the viewer
+  for (const Light& l : lights) {
+    const Vec3 dir = l.type == LightType::Headlight ? v : glm::normalize(l.direction);
+    const Vec3 h = dir + v;
+    // A light exactly behind the viewer's line of sight has no halfway vector;
+    // its specular lobe then faces away from every visible normal.
+    const Vec3 halfway = glm::length(h) > 0.0 ? glm::normalize(h) : Vec3(0.0);
+    s.lights.push_back({dir, halfway, l.intensity});
+  }
+  return s;
+}
+
+Reflectance reflectance(const ShadingSetup& setup, const Vec3& n) {
+  Reflectance r;
+  for (const ShadingSetup::Term& t : setup.lights) {
+    const double nl = glm::dot(n, t.light);
+    if (nl <= 0.0) continue;
+    r.diffuse += t.intensity * nl;
+    const double nh = glm::dot(n, t.halfway);
+    if (nh > 0.0) r.specular += t.intensity * std::pow(nh, setup.shininess);
+  }
+  return r;
+}
+
+Vec3 surface_normal(const Vec3& gradient_index, const Vec3& world_scale) {
+  const Vec3 g = gradient_index / world_scale;  // d/dworld = d/dindex / scale
+  const double len = glm::length(g);
+  if (len == 0.0) return Vec3(0.0);
+  return -g / len;
+}
+
+Vec3 shade(const Classified& c, const Reflectance& r) {
+  const double intensity = c.ka + c.kd * r.diffuse + c.ks * r.specular;
+  return glm::clamp(c.color * intensity, 0.0, 1.0);
+}
+
+// --- Compositing --------------------------------------------------------------
+
+double opacity_correct(double alpha, double step) {
+  if (alpha >= 1.0) return 1.0;
+  return 1.0 - std::pow(1.0 - alpha, step);
+}
+
+void composite(Accumulator& acc, const Vec3& color, double alpha) {
+  const double w = (1.0 - acc.alpha) * alpha;
+  acc.color += w * color;
+  acc.alpha += w;
+}
+
+// --- The whole ray ------------------------------------------------------------
+
+std::uint32_t sample_count(const Segment& s, double step) {
+  return static_cast<std::uint32_t>(std::floor(s.length() / step)) + 1u;
+}
+
+glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const ShadingSetup& shading,
+                    const RenderSettings& settings, const Ray& ray, RayStats* stats) {
+  RayStats local;
+  RayStats& st = stats ? *stats : local;
+  st = RayStats{};
+  const std::optional<Segment> seg = clip(ray, rv.world_box);
+  if (!seg) return glm::dvec4(0.0);
+  st.hit = true;
+  const std::uint32_t n = sample_count(*seg, settings.step);
+  const bool ert = settings.ert_threshold < 1.0;
+
+  if (settings.mode == RenderMode::Mip) {
+    double peak = 0.0;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const Vec3 p = glm::clamp(ray.at(seg->t_enter + k * settings.step) / rv.world_scale,
+                                rv.index_box.lo, rv.index_box.hi);
+      peak = std::max(peak, interpolate(*rv.volume, *rv.gradients, p).value);
+      ++st.samples;
+    }
+    const double gray = peak / rv.volume->max_stored();
+    return glm::dvec4(gray, gray, gray, 1.0);
+  }
+
+  Accumulator acc;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    // Stepping: positions from the entry point, converted to index space and
+    // clamped against rounding at the box faces.
+    const Vec3 p = glm::clamp(ray.at(seg->t_enter + k * settings.step) / rv.world_scale,
+                              rv.index_box.lo, rv.index_box.hi);
+    const Sample s = interpolate(*rv.volume, *rv.gradients, p);
+    ++st.samples;
+    const Classified c = tf.classify(s.value);
+    if (c.alpha <= 0.0) continue;
+    const Vec3 color =
+        settings.mode == RenderMode::Shaded
+            ? shade(c, reflectance(shading, surface_normal(s.gradient, rv.world_scale)))
+            : c.color;
+    composite(acc, color, opacity_correct(c.alpha, settings.step));
+    if (ert && acc.alpha >= settings.ert_threshold) {
+      st.terminated_early = k + 1 < n;
+      break;
+    }
+  }
+  return glm::dvec4(acc.color, acc.alpha);
+}
+
+// --- The whole image ------------------------------------------------------------
+
+RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
+                                const GradientField& gradients, const CameraPose& pose) {
+  RenderInputs in;
+  in.volume = make_render_volume(volume, gradients, scene.volume.crop);
+  in.tf = stored_transfer_function(scene, volume);
+  in.camera = make_camera_frame(scene.camera, pose, scene.render.width, scene.render.height,
+                                in.volume.world_scale);
+  in.shading = make_shading_setup(scene.lights, in.camera.forward, scene.material.shininess);
+  in.settings.mode = scene.render.mode;
+  in.settings.step = 1.0 / scene.render.oversampling;
+  in.settings.ert_threshold = scene.render.ert_threshold;
+  return in;
+}
+
+Image render_image(const RenderInputs& in, int threads, FrameStats* stats) {
+  Image img(in.camera.width, in.camera.height);
+  std::vector<FrameStats> rows(static_cast<std::size_t>(img.height));
+  parallel_for(
+      img.height,
+      [&](int y) {
+        FrameStats& fs = rows[static_cast<std::size_t>(y)];
+        for (int x = 0; x < img.width; ++x) {
+          RayStats rs;
+          img.at(x, y) = cast_ray(in.volume, in.tf, in.shading, in.settings,
+                                  primary_ray(in.camera, x, y), &rs);
+          fs.rays += 1;
+          fs.samples += rs.samples;
+          fs.rays_hit += rs.hit ? 1 : 0;
+          fs.rays_terminated_early += rs.terminated_early ? 1 : 0;
+        }
+      },
+      threads);
+  if (stats) {
+    *stats = FrameStats{};
+    for (const FrameStats& r : rows) {
+      stats->samples += r.samples;
+      stats->rays += r.rays;
+      stats->rays_hit += r.rays_hit;
+      stats->rays_terminated_early += r.rays_terminated_early;
+    }
+  }
+  return img;
+}
+
+}  // namespace voxcast::ref

@@ -1,0 +1,98 @@
+// The scene: everything a render needs, as plain data. Parsed from TOML
+// (scene_toml.cpp; every key is documented in docs/scenes.md) and read by every
+// engine — refmodel, hls, rtl_model — so they cannot disagree on a parameter.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "refmodel/precision/profile.hpp"
+#include "refmodel/volume/gradients.hpp"
+#include "refmodel/volume/loaders.hpp"
+#include "refmodel/volume/transfer_function.hpp"
+
+namespace voxcast::ref {
+
+struct Crop {
+  std::array<int, 3> lo{0, 0, 0};  // inclusive voxel indices
+  std::array<int, 3> hi{0, 0, 0};  // inclusive
+};
+
+struct VolumeDesc {
+  std::string source = "phantom:shepp-logan";
+  std::optional<RawSpec> raw;  // set when volume.dims/type are given
+  std::optional<Crop> crop;    // VIRIM's cubic sub-regions; whole volume if absent
+  GradientOperator gradient = GradientOperator::Central;
+};
+
+enum class Projection { Perspective, Parallel };
+
+struct CameraPose {
+  glm::dvec3 eye{0.0}, center{0.0}, up{0.0, 0.0, 1.0};  // voxel coordinates
+};
+
+struct CameraDesc {
+  Projection projection = Projection::Perspective;
+  CameraPose pose;
+  double fov_deg = 40.0;     // perspective: vertical field of view
+  double height = 64.0;      // parallel: view height in voxels (world units)
+  double stereo_deg = 0.0;   // 0 = mono; VIRIM used 4
+  std::vector<CameraPose> path;  // keyframes of a flythrough (may be empty)
+};
+
+enum class RenderMode { Shaded, Unshaded, Mip };
+
+struct RenderDesc {
+  int width = 256;
+  int height = 256;
+  RenderMode mode = RenderMode::Shaded;
+  double oversampling = 1.0;    // samples per world unit along the ray
+  double ert_threshold = 0.98;  // early ray termination; >= 1 disables it
+  glm::dvec3 background{0.0};
+  int frames = 1;               // frames along camera.path
+  int threads = 0;              // 0 = all cores
+};
+
+enum class LightType { Directional, Headlight };
+
+struct Light {
+  LightType type = LightType::Headlight;
+  glm::dvec3 direction{0.0, 0.0, 1.0};  // towards the light, world axes (directional only)
+  double intensity = 1.0;
+};
+
+struct Scene {
+  std::string origin = "scene";  // file path or "default scene", for messages
+  std::string base_dir = ".";    // resolves relative volume paths
+  VolumeDesc volume;
+  std::vector<TfPoint> tf_points;
+  TfInterpolation tf_interpolation = TfInterpolation::Ramp;
+  Material material;
+  CameraDesc camera;
+  RenderDesc render;
+  std::vector<Light> lights;
+  // [precision]: the fixed-point design's widths (docs/pipeline.md).
+  std::string precision_name = "balanced";  // the preset, plus "+overrides" if any
+  PrecisionProfile precision;
+};
+
+const char* to_string(Projection p);
+const char* to_string(RenderMode m);
+const char* to_string(LightType t);
+
+// The transfer function of the scene in the volume's stored units.
+TransferFunction stored_transfer_function(const Scene& scene, const Volume& volume);
+
+// Checks what can only be checked against the loaded volume (crop inside the
+// dims); throws voxcast::Error naming the key.
+void validate_against_volume(const Scene& scene, const Volume& volume);
+
+// The poses of an animation: the camera pose if there is no path, else
+// `frames` poses linearly interpolated along the keyframes.
+std::vector<CameraPose> frame_poses(const CameraDesc& camera, int frames);
+
+}  // namespace voxcast::ref

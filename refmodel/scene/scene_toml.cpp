@@ -1,0 +1,509 @@
+#include "refmodel/scene/scene_toml.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "refmodel/error.hpp"
+#include "refmodel/precision/presets.hpp"
+
+namespace voxcast::ref {
+namespace {
+
+std::vector<std::string> precision_keys() {
+  std::vector<std::string> keys = {"profile"};
+  for (const ProfileField& f : profile_fields()) keys.push_back(f.name);
+  return keys;
+}
+
+// --- Schema: the keys each table accepts ------------------------------------
+// Unknown keys are errors (a typo must not silently fall back to a default);
+// docs/scenes.md documents each of these (tests/refmodel/test_scene.cpp checks).
+const std::map<std::string, std::vector<std::string>>& schema() {
+  static const std::map<std::string, std::vector<std::string>> s = {
+      {"", {"volume", "classification", "camera", "render", "lights", "precision"}},
+      {"precision", precision_keys()},
+      {"volume", {"source", "dims", "type", "spacing", "endian", "crop", "gradient"}},
+      {"volume.crop", {"lo", "hi"}},
+      {"classification", {"interpolation", "points", "ka", "kd", "ks", "shininess"}},
+      {"classification.points[]", {"value", "color", "alpha"}},
+      {"camera", {"projection", "eye", "center", "up", "fov_deg", "height", "stereo_deg", "path"}},
+      {"camera.path[]", {"eye", "center", "up"}},
+      {"render", {"width", "height", "mode", "oversampling", "ert_threshold", "background",
+                  "frames", "threads"}},
+      {"lights[]", {"type", "direction", "intensity"}},
+  };
+  return s;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// Where a key came from, for messages: "scene.toml:12" or "--set render.width=0".
+struct Origins {
+  std::string file;
+  std::map<std::string, std::string> overridden;  // dotted key -> "--set k=v"
+
+  std::string where(const std::string& key, const toml::node* node) const {
+    for (const auto& [k, o] : overridden)
+      if (key == k || key.rfind(k + ".", 0) == 0 || key.rfind(k + "[", 0) == 0) return o;
+    if (node && node->source().begin.line > 0)
+      return file + ":" + std::to_string(node->source().begin.line);
+    return file;
+  }
+};
+
+// Reads one TOML table against its schema entry. Every accessor checks the
+// type and range and names the key; finish() rejects keys it does not know.
+class TableReader {
+ public:
+  TableReader(const toml::table* table, std::string path, std::string schema_key,
+              const Origins& origins)
+      : table_(table), path_(std::move(path)), schema_key_(std::move(schema_key)),
+        origins_(origins) {
+    reject_unknown_keys();
+  }
+
+  bool has(const std::string& key) const { return table_ && table_->contains(key); }
+  std::string key_path(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw Error(origins_.where(key_path(key), node(key)) + ": " + key_path(key) + " " + what);
+  }
+
+  double number(const std::string& key, double def, double lo, double hi,
+                bool lo_open = false, bool hi_open = false) const {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    const double v = as_number(key, *n);
+    check_range(key, v, lo, hi, lo_open, hi_open);
+    return v;
+  }
+
+  int integer(const std::string& key, int def, int lo, int hi) const {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    const auto v = n->value_exact<int64_t>();
+    if (!v) fail(key, "must be an integer, not " + type_name(*n));
+    if (*v < lo || *v > hi)
+      fail(key, "= " + std::to_string(*v) + " is outside [" + std::to_string(lo) + ", " +
+                    std::to_string(hi) + "]");
+    return static_cast<int>(*v);
+  }
+
+  std::string string(const std::string& key, const std::string& def,
+                     const std::vector<std::string>& allowed = {}) const {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    const auto v = n->value_exact<std::string>();
+    if (!v) fail(key, "must be a string, not " + type_name(*n));
+    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *v) == allowed.end()) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+      fail(key, "= \"" + *v + "\" is not one of " + list);
+    }
+    return *v;
+  }
+
+  glm::dvec3 vec3(const std::string& key, glm::dvec3 def, double lo, double hi) const {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3) fail(key, "must be an array of 3 numbers");
+    glm::dvec3 v;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const toml::node& e = *a->get(i);
+      const std::string ek = key + "[" + std::to_string(i) + "]";
+      v[static_cast<int>(i)] = as_number(ek, e);
+      check_range(ek, v[static_cast<int>(i)], lo, hi, false, false);
+    }
+    return v;
+  }
+
+  std::array<int, 3> int3(const std::string& key, int lo, int hi) const {
+    const toml::node* n = node(key);
+    const toml::array* a = n ? n->as_array() : nullptr;
+    if (!a || a->size() != 3) fail(key, "must be an array of 3 integers");
+    std::array<int, 3> v{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto e = a->get(i)->value_exact<int64_t>();
+      const std::string ek = key + "[" + std::to_string(i) + "]";
+      if (!e) fail(ek, "must be an integer");
+      if (*e < lo || *e > hi)
+        fail(ek, "= " + std::to_string(*e) + " is outside [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+      v[i] = static_cast<int>(*e);
+    }
+    return v;
+  }
+
+  TableReader table(const std::string& key) const {
+    const toml::node* n = node(key);
+    if (n && !n->is_table()) fail(key, "must be a table");
+    return TableReader(n ? n->as_table() : nullptr, key_path(key), schema_child(key), origins_);
+  }
+
+  // Array of tables (TOML [[x]] or [{...}, {...}]).
+  std::vector<TableReader> tables(const std::string& key) const {
+    std::vector<TableReader> out;
+    const toml::node* n = node(key);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, "must be an array of tables");
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::table* t = a->get(i)->as_table();
+      const std::string item = key + "[" + std::to_string(i) + "]";
+      if (!t) fail(item, "must be a table");
+      out.emplace_back(t, key_path(item), schema_child(key) + "[]", origins_);
+    }
+    return out;
+  }
+
+ private:
+  const toml::node* node(const std::string& key) const {
+    return table_ ? table_->get(key) : nullptr;
+  }
+  std::string schema_child(const std::string& key) const {
+    return schema_key_.empty() ? key : schema_key_ + "." + key;
+  }
+  static std::string type_name(const toml::node& n) {
+    std::ostringstream os;
+    os << n.type();
+    return os.str();
+  }
+  double as_number(const std::string& key, const toml::node& n) const {
+    double v;
+    if (auto i = n.value_exact<int64_t>())
+      v = static_cast<double>(*i);
+    else if (auto d = n.value_exact<double>())
+      v = *d;
+    else
+      fail(key, "must be a number, not " + type_name(n));
+    if (!std::isfinite(v)) fail(key, "= " + fmt(v) + " is not a finite number");
+    return v;
+  }
+  void check_range(const std::string& key, double v, double lo, double hi, bool lo_open,
+                   bool hi_open) const {
+    const bool bad = lo_open ? !(v > lo) : !(v >= lo);
+    const bool bad_hi = hi_open ? !(v < hi) : !(v <= hi);
+    if (bad || bad_hi)
+      fail(key, "= " + fmt(v) + " is outside " + (lo_open ? "(" : "[") + fmt(lo) + ", " +
+                    fmt(hi) + (hi_open ? ")" : "]"));
+  }
+  void reject_unknown_keys() const {
+    if (!table_) return;
+    const auto& allowed = schema().at(schema_key_);
+    for (const auto& [k, n] : *table_) {
+      const std::string key(k.str());
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      std::string hint;
+      std::size_t best = 3;
+      for (const auto& a : allowed)
+        if (const std::size_t d = edit_distance(key, a); d < best) best = d, hint = a;
+      throw Error(origins_.where(key_path(key), &n) + ": unknown key " + key_path(key) +
+                  (hint.empty() ? "" : " (did you mean " + key_path(hint) + "?)"));
+    }
+  }
+
+  const toml::table* table_;
+  std::string path_;
+  std::string schema_key_;
+  const Origins& origins_;
+};
+
+// --- --set overrides ------------------------------------------------------------
+
+// Splits "lights[0].intensity" / "lights.0.intensity" into its parts.
+std::vector<std::string> split_key(const std::string& key) {
+  std::vector<std::string> parts;
+  std::string cur;
+  for (char c : key) {
+    if (c == '.' || c == '[' || c == ']') {
+      if (!cur.empty()) parts.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) parts.push_back(cur);
+  return parts;
+}
+
+bool is_index(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+std::string canonical_key(const std::vector<std::string>& parts) {
+  std::string k;
+  for (const auto& p : parts) k += is_index(p) ? "[" + p + "]" : (k.empty() ? "" : ".") + p;
+  return k;
+}
+
+toml::node_view<toml::node> value_of_override(const std::string& text, toml::table& holder) {
+  try {
+    holder = toml::parse("v = " + text);
+  } catch (const toml::parse_error&) {
+    holder = toml::table{{"v", text}};  // a bare word: take it as a string
+  }
+  return holder["v"];
+}
+
+void apply_override(toml::table& root, const std::string& assignment, Origins& origins) {
+  const auto eq = assignment.find('=');
+  const std::string where = "--set " + assignment;
+  if (eq == std::string::npos || eq == 0)
+    throw Error(where + ": expected key=value (e.g. render.oversampling=4)");
+  const std::vector<std::string> parts = split_key(assignment.substr(0, eq));
+  if (parts.empty()) throw Error(where + ": empty key");
+  toml::table holder;
+  toml::node_view<toml::node> value = value_of_override(assignment.substr(eq + 1), holder);
+
+  // Walk to the parent of the last part, creating tables/arrays as needed.
+  toml::node* cur = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    const bool next_is_index = is_index(parts[i + 1]);
+    toml::node* child = nullptr;
+    if (auto* t = cur->as_table()) {
+      if (!t->contains(p)) {
+        if (next_is_index)
+          t->insert(p, toml::array{});
+        else
+          t->insert(p, toml::table{});
+      }
+      child = t->get(p);
+    } else if (auto* a = cur->as_array()) {
+      if (!is_index(p)) throw Error(where + ": expected an array index before " + p);
+      const std::size_t idx = std::stoul(p);
+      if (idx > a->size()) throw Error(where + ": index " + p + " is past the end of the array");
+      if (idx == a->size()) a->push_back(toml::table{});
+      child = a->get(idx);
+    }
+    if (!child || (!child->is_table() && !child->is_array()))
+      throw Error(where + ": " + p + " holds a value, not a table or array");
+    cur = child;
+  }
+  const std::string& last = parts.back();
+  if (auto* t = cur->as_table()) {
+    t->insert_or_assign(last, *value.node());
+  } else if (auto* a = cur->as_array()) {
+    if (!is_index(last)) throw Error(where + ": expected an array index, got " + last);
+    const std::size_t idx = std::stoul(last);
+    if (idx > a->size()) throw Error(where + ": index " + last + " is past the end of the array");
+    if (idx == a->size())
+      a->push_back(*value.node());
+    else
+      a->replace(a->begin() + static_cast<long>(idx), *value.node());
+  } else {
+    throw Error(where + ": the parent of " + last + " is not a table");
+  }
+  origins.overridden[canonical_key(parts)] = where;
+}
+
+// --- Sections ------------------------------------------------------------------
+
+void read_volume(const TableReader& r, VolumeDesc& v) {
+  v.source = r.string("source", v.source);
+  if (v.source.empty()) r.fail("source", "is empty");
+  v.gradient = parse_gradient_operator(r.string("gradient", "central", {"central", "sobel"}));
+  if (r.has("dims") || r.has("type")) {
+    RawSpec raw;
+    if (!r.has("dims")) r.fail("dims", "is required when volume.type is given (raw files)");
+    raw.dims = r.int3("dims", 1, 65535);
+    const std::string type = r.string("type", "u8", {"u8", "u16", "i16"});
+    raw.type = type == "u8" ? RawType::U8 : type == "u16" ? RawType::U16 : RawType::I16;
+    raw.spacing = r.vec3("spacing", raw.spacing, 1e-6, 1e6);
+    if (raw.spacing.x <= 0 || raw.spacing.y <= 0 || raw.spacing.z <= 0)
+      r.fail("spacing", "must be > 0 along every axis");
+    raw.big_endian = r.string("endian", "little", {"little", "big"}) == "big";
+    v.raw = raw;
+  } else {
+    for (const char* k : {"spacing", "endian"})
+      if (r.has(k)) r.fail(k, "applies to raw files only: give volume.dims and volume.type too");
+  }
+  if (r.has("crop")) {
+    const TableReader c = r.table("crop");
+    Crop crop;
+    crop.lo = c.int3("lo", 0, 65535);
+    crop.hi = c.int3("hi", 0, 65535);
+    for (int a = 0; a < 3; ++a)
+      if (crop.lo[a] > crop.hi[a]) c.fail("lo", "must not exceed volume.crop.hi on any axis");
+    v.crop = crop;
+  }
+}
+
+void read_classification(const TableReader& r, Scene& s) {
+  s.tf_interpolation = parse_tf_interpolation(r.string("interpolation", "ramp", {"ramp", "binary"}));
+  s.material.ka = r.number("ka", s.material.ka, 0.0, 1.0);
+  s.material.kd = r.number("kd", s.material.kd, 0.0, 1.0);
+  s.material.ks = r.number("ks", s.material.ks, 0.0, 1.0);
+  s.material.shininess = r.number("shininess", s.material.shininess, 1.0, 256.0);
+  if (!r.has("points")) r.fail("points", "is required: at least one control point");
+  s.tf_points.clear();
+  for (const TableReader& p : r.tables("points")) {
+    TfPoint pt;
+    if (!p.has("value")) p.fail("value", "is required");
+    pt.value = p.number("value", 0.0, -1e9, 1e9);
+    pt.color = p.vec3("color", pt.color, 0.0, 1.0);
+    pt.alpha = p.number("alpha", 0.0, 0.0, 1.0);
+    if (!s.tf_points.empty() && pt.value < s.tf_points.back().value)
+      p.fail("value", "= " + fmt(pt.value) + " is below the previous point's " +
+                          fmt(s.tf_points.back().value) + ": points must be sorted by value");
+    s.tf_points.push_back(pt);
+  }
+  if (s.tf_points.empty()) r.fail("points", "is empty: at least one control point is needed");
+}
+
+CameraPose read_pose(const TableReader& r, const CameraPose& def, bool required) {
+  CameraPose p = def;
+  for (const char* k : {"eye", "center"})
+    if (required && !r.has(k)) r.fail(k, "is required");
+  p.eye = r.vec3("eye", p.eye, -1e6, 1e6);
+  p.center = r.vec3("center", p.center, -1e6, 1e6);
+  p.up = r.vec3("up", p.up, -1e6, 1e6);
+  const glm::dvec3 f = p.center - p.eye;
+  if (f.x == 0 && f.y == 0 && f.z == 0) r.fail("center", "equals the eye: no view direction");
+  if (p.up.x == 0 && p.up.y == 0 && p.up.z == 0) r.fail("up", "is the zero vector");
+  const glm::dvec3 c{f.y * p.up.z - f.z * p.up.y, f.z * p.up.x - f.x * p.up.z,
+                     f.x * p.up.y - f.y * p.up.x};
+  const double fl = std::sqrt(f.x * f.x + f.y * f.y + f.z * f.z);
+  const double ul = std::sqrt(p.up.x * p.up.x + p.up.y * p.up.y + p.up.z * p.up.z);
+  if (std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z) <= 1e-9 * fl * ul)
+    r.fail("up", "is parallel to the view direction (center - eye)");
+  return p;
+}
+
+void read_camera(const TableReader& r, CameraDesc& c) {
+  c.projection = r.string("projection", "perspective", {"perspective", "parallel"}) == "parallel"
+                     ? Projection::Parallel
+                     : Projection::Perspective;
+  c.pose = read_pose(r, c.pose, true);
+  c.fov_deg = r.number("fov_deg", c.fov_deg, 0.0, 180.0, true, true);
+  c.height = r.number("height", c.height, 0.0, 1e6, true, false);
+  c.stereo_deg = r.number("stereo_deg", c.stereo_deg, 0.0, 30.0);
+  c.path.clear();
+  for (const TableReader& k : r.tables("path")) c.path.push_back(read_pose(k, c.pose, false));
+}
+
+void read_render(const TableReader& r, RenderDesc& d) {
+  d.width = r.integer("width", d.width, 1, 8192);
+  d.height = r.integer("height", d.height, 1, 8192);
+  const std::string mode = r.string("mode", "shaded", {"shaded", "unshaded", "mip"});
+  d.mode = mode == "shaded" ? RenderMode::Shaded : mode == "unshaded" ? RenderMode::Unshaded
+                                                                      : RenderMode::Mip;
+  d.oversampling = r.number("oversampling", d.oversampling, 0.25, 16.0);
+  d.ert_threshold = r.number("ert_threshold", d.ert_threshold, 0.0, 1.0, true, false);
+  d.background = r.vec3("background", d.background, 0.0, 1.0);
+  d.frames = r.integer("frames", d.frames, 1, 100000);
+  d.threads = r.integer("threads", d.threads, 0, 1024);
+}
+
+void read_lights(const TableReader& root, std::vector<Light>& lights) {
+  lights.clear();
+  for (const TableReader& r : root.tables("lights")) {
+    Light l;
+    l.type = r.string("type", "headlight", {"directional", "headlight"}) == "directional"
+                 ? LightType::Directional
+                 : LightType::Headlight;
+    if (l.type == LightType::Directional) {
+      if (!r.has("direction")) r.fail("direction", "is required for a directional light");
+      l.direction = r.vec3("direction", l.direction, -1e6, 1e6);
+      if (l.direction.x == 0 && l.direction.y == 0 && l.direction.z == 0)
+        r.fail("direction", "is the zero vector");
+    } else if (r.has("direction")) {
+      r.fail("direction", "does not apply to a headlight (it shines along the view direction)");
+    }
+    l.intensity = r.number("intensity", l.intensity, 0.0, 100.0);
+    lights.push_back(l);
+  }
+}
+
+void read_precision(const TableReader& r, Scene& s) {
+  std::vector<std::string> presets = preset_names();
+  const std::string name = r.string("profile", "balanced", presets);
+  s.precision = preset_profile(name);
+  s.precision_name = name;
+  for (const ProfileField& f : profile_fields()) {
+    if (!r.has(f.name)) continue;
+    s.precision.*f.member = r.integer(f.name, s.precision.*f.member, f.min, f.max);
+    s.precision_name += std::string(s.precision_name == name ? "+" : ",") + f.name + "=" +
+                        std::to_string(s.precision.*f.member);
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& toml_text, const std::string& origin,
+                  const std::string& base_dir, const Overrides& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, origin);
+  } catch (const toml::parse_error& e) {
+    throw Error(origin + ":" + std::to_string(e.source().begin.line) + ": " +
+                std::string(e.description()));
+  }
+  Origins origins{origin, {}};
+  for (const std::string& o : overrides) apply_override(root, o, origins);
+
+  Scene s;
+  s.origin = origin;
+  s.base_dir = base_dir;
+  const TableReader top(&root, "", "", origins);
+  if (!top.has("volume")) top.fail("volume", "table is required (volume.source)");
+  if (!top.has("camera")) top.fail("camera", "table is required (camera.eye, camera.center)");
+  if (!top.has("classification")) top.fail("classification", "table is required");
+  read_volume(top.table("volume"), s.volume);
+  read_classification(top.table("classification"), s);
+  read_camera(top.table("camera"), s.camera);
+  read_render(top.table("render"), s.render);
+  read_lights(top, s.lights);
+  read_precision(top.table("precision"), s);
+  if (!top.has("lights")) s.lights = {Light{}};  // one headlight of intensity 1
+  return s;
+}
+
+Scene load_scene_file(const std::string& path, const Overrides& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return parse_scene(text.str(), path, dir.empty() ? "." : dir, overrides);
+}
+
+Scene default_scene(const Overrides& overrides) {
+  return parse_scene(default_scene_text(), "default scene", ".", overrides);
+}
+
+std::vector<std::string> known_scene_keys() {
+  std::vector<std::string> keys;
+  for (const auto& [table, names] : schema())
+    for (const auto& n : names) keys.push_back(table.empty() ? n : table + "." + n);
+  return keys;
+}
+
+}  // namespace voxcast::ref

@@ -1,0 +1,545 @@
+// DICOM series through GDCM. GDCM's headers stay in this translation unit
+// (they clash with OpenImageIO's, see BUILD-NOTES.md).
+//
+// One folder = one series: every regular file in the folder (not recursive) is
+// tried; files that are not DICOM (README, LICENSE) and DICOM files without
+// pixel data (DICOMDIR) are skipped. Slices are ordered by their position along
+// the slice normal, ImagePositionPatient . (row x column of ImageOrientationPatient).
+//
+// Before GDCM parses a file, its data element structure is walked here: Debian's
+// GDCM 3.0 aborts the process on an assertion for many truncated files, and
+// reads a file cut inside its pixel data without complaint.
+
+// GDCM 3.0's headers use C casts (and are not on a SYSTEM include path).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#include <gdcmAttribute.h>
+#include <gdcmImage.h>
+#include <gdcmImageReader.h>
+#include <gdcmReader.h>
+#include <gdcmTrace.h>
+#pragma GCC diagnostic pop
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "refmodel/error.hpp"
+#include "refmodel/volume/loaders.hpp"
+
+namespace voxcast::ref {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kUnevenTolerance = 0.01;  // relative deviation of a slice gap from the median
+constexpr double kSamePositionMm = 1e-3;   // two slices closer than this are duplicates
+constexpr double kOrientationTolerance = 1e-4;
+constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
+
+struct Slice {
+  std::string name;  // file name, for messages
+  std::string series_uid;
+  int columns = 0, rows = 0;
+  std::array<double, 3> position{};     // ImagePositionPatient, mm
+  std::array<double, 6> orientation{};  // ImageOrientationPatient
+  double spacing_x = 1.0, spacing_y = 1.0;
+  double thickness = 0.0;
+  double slope = 1.0, intercept = 0.0;
+  bool is_signed = false;
+  int bits_allocated = 16;
+  std::vector<std::uint16_t> words;  // raw stored values, x fastest (two's complement if signed)
+  double along_normal = 0.0;         // position . normal, set when sorting
+};
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.pop_back();
+  std::size_t b = 0;
+  while (b < s.size() && s[b] == ' ') ++b;
+  return s.substr(b);
+}
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// --- DICOM element structure (PS3.5 section 7) ------------------------------------
+// Walks the data elements of a whole file in memory, into sequences and items,
+// checking that every element's value lies inside the file. Values are not
+// interpreted; only the file meta group's TransferSyntaxUID is read, to choose
+// the encoding of the data set.
+class StructureWalk {
+ public:
+  explicit StructureWalk(const std::string& bytes) : b_(bytes) {}
+
+  // Empty if the structure is complete; else what is wrong, for a message.
+  std::string check(bool has_preamble) {
+    try {
+      pos_ = has_preamble ? 132 : 0;
+      std::string syntax;
+      if (has_preamble) {
+        syntax = read_meta_group();
+        if (syntax.empty()) throw Broken{"no TransferSyntaxUID (0002,0010) in the file meta group"};
+        if (pos_ >= b_.size()) throw Broken{"no data set after the file meta group"};
+      }
+      if (syntax == "1.2.840.10008.1.2.1.99") return "";  // deflated: GDCM inflates and checks
+      explicit_vr_ = syntax != "1.2.840.10008.1.2";
+      big_endian_ = syntax == "1.2.840.10008.1.2.2";
+      if (!has_preamble) explicit_vr_ = looks_like_vr(4);
+      walk_elements(b_.size(), false, 0);
+      return "";
+    } catch (const Broken& e) {
+      return e.what;
+    }
+  }
+
+ private:
+  struct Broken {
+    std::string what;
+  };
+  static constexpr std::uint32_t kUndefinedLength = 0xFFFFFFFF;
+
+  std::uint32_t u16(std::size_t p, bool big) const {
+    const auto c0 = static_cast<unsigned char>(b_[p]), c1 = static_cast<unsigned char>(b_[p + 1]);
+    return big ? (std::uint32_t{c0} << 8 | c1) : (std::uint32_t{c1} << 8 | c0);
+  }
+  std::uint32_t u32(std::size_t p, bool big) const {
+    const std::uint32_t lo = u16(p, big), hi = u16(p + 2, big);
+    return big ? (lo << 16 | hi) : (hi << 16 | lo);
+  }
+  bool looks_like_vr(std::size_t offset) const {
+    return pos_ + offset + 2 <= b_.size() &&
+           std::isupper(static_cast<unsigned char>(b_[pos_ + offset])) &&
+           std::isupper(static_cast<unsigned char>(b_[pos_ + offset + 1]));
+  }
+  void need(std::uint64_t n, std::uint32_t group, std::uint32_t element) const {
+    if (pos_ + n > b_.size()) {
+      char tag[16];
+      std::snprintf(tag, sizeof tag, "(%04X,%04X)", group, element);
+      throw Broken{"element " + std::string(tag) + " at byte " + std::to_string(pos_) + " needs " +
+                   std::to_string(n) + " bytes, the file ends at byte " +
+                   std::to_string(b_.size())};
+    }
+  }
+  static bool long_length_vr(const char* vr) {
+    static const char* const kLong[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
+                                        "SV", "UC", "UN", "UR", "UT", "UV"};
+    for (const char* l : kLong)
+      if (vr[0] == l[0] && vr[1] == l[1]) return true;
+    return false;
+  }
+
+  // The file meta group (0002,xxxx): explicit VR little endian. Returns the
+  // TransferSyntaxUID.
+  std::string read_meta_group() {
+    std::string syntax;
+    while (pos_ + 8 <= b_.size() && u16(pos_, false) == 0x0002) {
+      const std::uint32_t element = u16(pos_ + 2, false);
+      const char vr[2] = {b_[pos_ + 4], b_[pos_ + 5]};
+      std::uint32_t length;
+      if (long_length_vr(vr)) {
+        need(12, 0x0002, element);
+        length = u32(pos_ + 8, false);
+        pos_ += 12;
+      } else {
+        length = u16(pos_ + 6, false);
+        pos_ += 8;
+      }
+      need(length, 0x0002, element);
+      if (element == 0x0010) {
+        syntax = b_.substr(pos_, length);
+        while (!syntax.empty() && (syntax.back() == '\0' || syntax.back() == ' '))
+          syntax.pop_back();
+      }
+      pos_ += length;
+    }
+    return syntax;
+  }
+
+  // Elements up to `end`, or up to an item delimiter if `in_item`.
+  void walk_elements(std::size_t end, bool in_item, int depth) {
+    if (depth > 64) throw Broken{"sequences nested deeper than 64 levels"};
+    while (pos_ < end) {
+      // Top-level padding shorter than an element header: accept zeros only.
+      if (!in_item && end - pos_ < 8 &&
+          std::all_of(b_.begin() + static_cast<std::ptrdiff_t>(pos_), b_.end(),
+                      [](char c) { return c == 0; }))
+        return;
+      need(8, 0, 0);
+      const std::uint32_t group = u16(pos_, big_endian_), element = u16(pos_ + 2, big_endian_);
+      if (group == 0xFFFE) {
+        pos_ += 8;
+        if (element == 0xE00D && in_item) return;
+        throw Broken{"unexpected item delimiter at byte " + std::to_string(pos_ - 8)};
+      }
+      std::uint32_t length;
+      bool implicit_items = !explicit_vr_;
+      if (explicit_vr_) {
+        const char vr[2] = {b_[pos_ + 4], b_[pos_ + 5]};
+        if (long_length_vr(vr)) {
+          need(12, group, element);
+          length = u32(pos_ + 8, big_endian_);
+          pos_ += 12;
+        } else {
+          length = u16(pos_ + 6, big_endian_);
+          pos_ += 8;
+        }
+        implicit_items = vr[0] == 'U' && vr[1] == 'N';  // UN of undefined length: implicit VR
+      } else {
+        length = u32(pos_ + 4, big_endian_);
+        pos_ += 8;
+      }
+      if (length == kUndefinedLength) {
+        const bool saved = explicit_vr_;
+        if (implicit_items) explicit_vr_ = false;
+        walk_items(depth + 1);
+        explicit_vr_ = saved;
+        continue;
+      }
+      need(length, group, element);
+      pos_ += length;
+    }
+    if (in_item) throw Broken{"an item of undefined length has no delimiter"};
+  }
+
+  // Items of a sequence (or fragments of encapsulated pixel data) up to the
+  // sequence delimiter.
+  void walk_items(int depth) {
+    for (;;) {
+      need(8, 0xFFFE, 0);
+      const std::uint32_t group = u16(pos_, big_endian_), element = u16(pos_ + 2, big_endian_);
+      const std::uint32_t length = u32(pos_ + 4, big_endian_);
+      if (group != 0xFFFE || (element != 0xE000 && element != 0xE0DD))
+        throw Broken{"expected a sequence item at byte " + std::to_string(pos_)};
+      pos_ += 8;
+      if (element == 0xE0DD) return;
+      if (length == kUndefinedLength) {
+        walk_elements(b_.size(), true, depth + 1);
+      } else {
+        need(length, group, element);
+        pos_ += length;
+      }
+    }
+  }
+
+  const std::string& b_;
+  std::size_t pos_ = 0;
+  bool explicit_vr_ = true;
+  bool big_endian_ = false;
+};
+
+void quiet_gdcm() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    gdcm::Trace::DebugOff();
+    gdcm::Trace::WarningOff();
+    gdcm::Trace::ErrorOff();
+  });
+}
+
+// Reads one file. Returns false for files to skip (not DICOM, or DICOM without
+// pixel data); throws for DICOM images that cannot be used.
+bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
+  const std::string where = folder + "/" + file.filename().string();
+  std::string content;
+  {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(where + ": cannot open for reading");
+    content.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // DICOM Part 10 files carry "DICM" after a 128-byte preamble. A file without
+  // it is taken as a bare DICOM data set only if it starts with an element of
+  // group 0002 or 0008 and its whole element structure parses.
+  const bool part10 = content.size() >= 132 && content.compare(128, 4, "DICM") == 0;
+  if (!part10) {
+    const bool plausible =
+        content.size() >= 8 && (content.compare(0, 2, std::string("\x02\x00", 2)) == 0 ||
+                                content.compare(0, 2, std::string("\x08\x00", 2)) == 0);
+    if (!plausible) return false;  // not DICOM
+  }
+  const std::string broken = StructureWalk(content).check(part10);
+  if (!broken.empty()) {
+    if (!part10) return false;  // not DICOM
+    throw Error(where + ": truncated or corrupt DICOM file (" + broken + ")");
+  }
+  std::istringstream stream(std::move(content));
+  gdcm::ImageReader reader;
+  reader.SetStream(stream);
+  if (!reader.Read()) {
+    std::istringstream again(stream.str());
+    gdcm::Reader plain;
+    plain.SetStream(again);
+    if (plain.Read()) {
+      if (!plain.GetFile().GetDataSet().FindDataElement(gdcm::Tag(0x7fe0, 0x0010)))
+        return false;  // DICOM without an image (DICOMDIR, report, ...)
+      throw Error(where + ": GDCM cannot decode its pixel data");
+    }
+    if (part10) throw Error(where + ": corrupt DICOM file (GDCM cannot parse it)");
+    return false;  // not DICOM
+  }
+  const gdcm::Image& image = reader.GetImage();
+  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+  s.name = file.filename().string();
+
+  gdcm::Attribute<0x0020, 0x000e> series;
+  series.SetFromDataSet(ds);
+  s.series_uid = trim(std::string(series.GetValue()));
+
+  if (image.GetNumberOfDimensions() > 2 && image.GetDimension(2) > 1)
+    throw Error(where + ": a multi-frame image (" + std::to_string(image.GetDimension(2)) +
+                " frames); only series of single-frame slices are supported");
+  const gdcm::PixelFormat& pf = image.GetPixelFormat();
+  if (pf.GetSamplesPerPixel() != 1)
+    throw Error(where + ": SamplesPerPixel = " + std::to_string(pf.GetSamplesPerPixel()) +
+                "; only greyscale slices are supported");
+  const gdcm::PixelFormat::ScalarType st = pf.GetScalarType();
+  if (st != gdcm::PixelFormat::UINT8 && st != gdcm::PixelFormat::INT8 &&
+      st != gdcm::PixelFormat::UINT16 && st != gdcm::PixelFormat::INT16)
+    throw Error(where + ": pixel type " + pf.GetScalarTypeAsString() +
+                " is not supported (8 or 16 bits allocated)");
+  s.is_signed = pf.GetPixelRepresentation() != 0;
+  s.bits_allocated = pf.GetBitsAllocated();
+  s.columns = static_cast<int>(image.GetDimension(0));
+  s.rows = static_cast<int>(image.GetDimension(1));
+  if (s.columns < 1 || s.rows < 1) throw Error(where + ": empty image");
+
+  if (!ds.FindDataElement(gdcm::Tag(0x0020, 0x0032)))
+    throw Error(where + ": no ImagePositionPatient (0020,0032); cannot order the slices");
+  if (!ds.FindDataElement(gdcm::Tag(0x0020, 0x0037)))
+    throw Error(where + ": no ImageOrientationPatient (0020,0037); cannot order the slices");
+  if (!ds.FindDataElement(gdcm::Tag(0x0028, 0x0030)))
+    throw Error(where + ": no PixelSpacing (0028,0030)");
+  gdcm::Attribute<0x0020, 0x0032> ipp;
+  ipp.SetFromDataSet(ds);
+  gdcm::Attribute<0x0020, 0x0037> iop;
+  iop.SetFromDataSet(ds);
+  gdcm::Attribute<0x0028, 0x0030> pixel_spacing;  // row spacing (y), column spacing (x)
+  pixel_spacing.SetFromDataSet(ds);
+  for (unsigned k = 0; k < 3; ++k) s.position[k] = ipp.GetValue(k);
+  for (unsigned k = 0; k < 6; ++k) s.orientation[k] = iop.GetValue(k);
+  s.spacing_y = pixel_spacing.GetValue(0);
+  s.spacing_x = pixel_spacing.GetValue(1);
+  if (ds.FindDataElement(gdcm::Tag(0x0018, 0x0050))) {
+    gdcm::Attribute<0x0018, 0x0050> thickness;
+    thickness.SetFromDataSet(ds);
+    s.thickness = thickness.GetValue();
+  }
+  s.slope = image.GetSlope();
+  s.intercept = image.GetIntercept();
+  if (!std::isfinite(s.slope) || s.slope == 0.0 || !std::isfinite(s.intercept))
+    throw Error(where + ": RescaleSlope " + num(s.slope) + " / RescaleIntercept " +
+                num(s.intercept) + " are not usable");
+
+  // Pixel values: GDCM decodes the transfer syntax; the value is the low
+  // BitsStored bits of each allocated word (signed: two's complement of that
+  // width), so any bits above HighBit (old overlay planes) are dropped here.
+  const int bits_stored = pf.GetBitsStored();
+  if (pf.GetHighBit() != bits_stored - 1 || bits_stored < 1 || bits_stored > s.bits_allocated)
+    throw Error(where + ": BitsStored " + std::to_string(bits_stored) + " / HighBit " +
+                std::to_string(pf.GetHighBit()) +
+                " is not supported (need HighBit = BitsStored - 1)");
+  const std::uint32_t value_mask = (std::uint32_t{1} << bits_stored) - 1;
+  const std::uint32_t sign_bit = std::uint32_t{1} << (bits_stored - 1);
+  std::vector<char> buffer(image.GetBufferLength());
+  if (!image.GetBuffer(buffer.data())) throw Error(where + ": GDCM cannot decode its pixel data");
+  const std::size_t count = static_cast<std::size_t>(s.columns) * static_cast<std::size_t>(s.rows);
+  const std::size_t bytes = s.bits_allocated == 8 ? 1 : 2;
+  if (buffer.size() < count * bytes)
+    throw Error(where + ": pixel data hold " + std::to_string(buffer.size()) + " bytes, " +
+                std::to_string(s.columns) + "x" + std::to_string(s.rows) + " pixels need " +
+                std::to_string(count * bytes));
+  s.words.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    std::uint32_t word;
+    if (bytes == 1) {
+      word = static_cast<unsigned char>(buffer[k]);
+    } else {
+      std::uint16_t w;
+      std::memcpy(&w, &buffer[2 * k], 2);  // GDCM returns native byte order
+      word = w;
+    }
+    word &= value_mask;
+    // Signed: sign-extend from BitsStored into the 16-bit two's complement word.
+    if (s.is_signed && (word & sign_bit) != 0) word |= ~value_mask;
+    s.words[k] = static_cast<std::uint16_t>(word);
+  }
+  return true;
+}
+
+std::int32_t raw_value(const Slice& s, std::size_t k) {
+  const std::uint16_t w = s.words[k];
+  return s.is_signed ? static_cast<std::int32_t>(static_cast<std::int16_t>(w)) : w;
+}
+
+bool near(double a, double b, double tolerance) { return std::abs(a - b) <= tolerance; }
+
+}  // namespace
+
+Volume load_dicom_series(const std::string& folder) {
+  quiet_gdcm();
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) throw Error(folder + ": no such folder");
+
+  // Step 1: read every slice in the folder, in file-name order (for stable messages).
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec))
+    if (e.is_regular_file()) files.push_back(e.path());
+  if (ec) throw Error(folder + ": cannot list the folder (" + ec.message() + ")");
+  std::sort(files.begin(), files.end());
+  std::vector<Slice> slices;
+  std::vector<std::string> skipped;
+  for (const fs::path& f : files) {
+    Slice s;
+    if (read_slice(f, folder, s))
+      slices.push_back(std::move(s));
+    else
+      skipped.push_back(f.filename().string());
+  }
+  if (slices.empty()) {
+    std::string list;
+    for (const std::string& n : skipped) list += (list.empty() ? "" : ", ") + n;
+    throw Error(folder + ": no DICOM image slices found" +
+                (skipped.empty() ? std::string(" (the folder is empty)")
+                                 : " (skipped non-image files: " + list + ")"));
+  }
+
+  // Step 2: exactly one series, and slices that agree on geometry and format.
+  std::map<std::string, int> series;
+  for (const Slice& s : slices) ++series[s.series_uid];
+  if (series.size() > 1) {
+    std::string list;
+    for (const auto& [uid, n] : series)
+      list += (list.empty() ? "" : "; ") + (uid.empty() ? "<no SeriesInstanceUID>" : uid) + " (" +
+              std::to_string(n) + (n == 1 ? " file)" : " files)");
+    throw Error(folder + ": holds " + std::to_string(series.size()) +
+                " series, expected one: " + list);
+  }
+  const Slice& first = slices.front();
+  for (const Slice& s : slices) {
+    const std::string where = folder + "/" + s.name;
+    if (s.columns != first.columns || s.rows != first.rows)
+      throw Error(where + ": " + std::to_string(s.columns) + "x" + std::to_string(s.rows) +
+                  " pixels, but " + first.name + " has " + std::to_string(first.columns) + "x" +
+                  std::to_string(first.rows));
+    for (int k = 0; k < 6; ++k)
+      if (!near(s.orientation[k], first.orientation[k], kOrientationTolerance))
+        throw Error(where + ": ImageOrientationPatient differs from " + first.name + "'s");
+    if (!near(s.spacing_x, first.spacing_x, 1e-4 * first.spacing_x) ||
+        !near(s.spacing_y, first.spacing_y, 1e-4 * first.spacing_y))
+      throw Error(where + ": PixelSpacing differs from " + first.name + "'s");
+    if (s.slope != first.slope || s.intercept != first.intercept)
+      throw Error(where + ": RescaleSlope/Intercept " + num(s.slope) + "/" + num(s.intercept) +
+                  " differ from " + first.name + "'s " + num(first.slope) + "/" +
+                  num(first.intercept));
+    if (s.is_signed != first.is_signed || s.bits_allocated != first.bits_allocated)
+      throw Error(where + ": pixel format differs from " + first.name + "'s");
+  }
+  if (!(first.spacing_x > 0.0) || !(first.spacing_y > 0.0) || !std::isfinite(first.spacing_x) ||
+      !std::isfinite(first.spacing_y))
+    throw Error(folder + "/" + first.name + ": PixelSpacing " + num(first.spacing_y) + "\\" +
+                num(first.spacing_x) + " is not usable");
+  const std::uint64_t voxels = static_cast<std::uint64_t>(first.columns) *
+                               static_cast<std::uint64_t>(first.rows) * slices.size();
+  if (voxels > kMaxVoxels)
+    throw Error(folder + ": " + std::to_string(voxels) + " voxels, more than the limit of 2^31");
+
+  // Step 3: order along the slice normal; gaps must be even, positions distinct.
+  const std::array<double, 6>& o = first.orientation;
+  const std::array<double, 3> normal{o[1] * o[5] - o[2] * o[4], o[2] * o[3] - o[0] * o[5],
+                                     o[0] * o[4] - o[1] * o[3]};
+  const double normal_len = std::hypot(normal[0], normal[1], normal[2]);
+  if (!(normal_len > 0.5))
+    throw Error(folder + "/" + first.name + ": ImageOrientationPatient has no valid normal");
+  for (Slice& s : slices)
+    s.along_normal =
+        (s.position[0] * normal[0] + s.position[1] * normal[1] + s.position[2] * normal[2]) /
+        normal_len;
+  std::stable_sort(slices.begin(), slices.end(),
+                   [](const Slice& a, const Slice& b) { return a.along_normal < b.along_normal; });
+  double spacing_z = first.thickness > 0.0 ? first.thickness : 1.0;
+  if (slices.size() > 1) {
+    const std::size_t n = slices.size();
+    for (std::size_t k = 0; k + 1 < n; ++k)
+      if (slices[k + 1].along_normal - slices[k].along_normal < kSamePositionMm)
+        throw Error(folder + ": " + slices[k].name + " and " + slices[k + 1].name +
+                    " are both at slice position " + num(slices[k].along_normal) +
+                    " mm (duplicate slice)");
+    // Each gap is compared with the median gap, so that one missing slice is
+    // reported where it is missing.
+    std::vector<double> gaps(n - 1);
+    for (std::size_t k = 0; k + 1 < n; ++k)
+      gaps[k] = slices[k + 1].along_normal - slices[k].along_normal;
+    std::vector<double> sorted = gaps;
+    std::nth_element(sorted.begin(),
+                     sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (std::size_t k = 0; k + 1 < n; ++k)
+      if (std::abs(gaps[k] - median) > kUnevenTolerance * median)
+        throw Error(folder + ": the gap between " + slices[k].name + " and " + slices[k + 1].name +
+                    " is " + num(gaps[k]) + " mm, the series' median is " + num(median) +
+                    " mm (slices unevenly spaced by more than 1%: a slice "
+                    "missing or extra?)");
+    spacing_z = (slices[n - 1].along_normal - slices[0].along_normal) / static_cast<double>(n - 1);
+    // The positions must move along the normal (no gantry tilt / shear).
+    for (std::size_t k = 1; k < n; ++k) {
+      std::array<double, 3> d{};
+      for (int a = 0; a < 3; ++a) d[a] = slices[k].position[a] - slices[0].position[a];
+      const double along = slices[k].along_normal - slices[0].along_normal;
+      double lateral2 = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const double l = d[a] - along * normal[a] / normal_len;
+        lateral2 += l * l;
+      }
+      if (std::sqrt(lateral2) > kUnevenTolerance * along + 1e-3)
+        throw Error(folder + ": " + slices[k].name + " is offset " + num(std::sqrt(lateral2)) +
+                    " mm sideways from the slice normal through " + slices[0].name +
+                    " (gantry tilt or sheared series: not supported)");
+    }
+  }
+
+  // Step 4: values. physical = slope * raw + intercept; raw values are shifted
+  // up by -min if min < 0, and the intercept absorbs the shift.
+  std::int32_t lo = raw_value(slices[0], 0), hi = lo;
+  for (const Slice& s : slices)
+    for (std::size_t k = 0; k < s.words.size(); ++k) {
+      lo = std::min(lo, raw_value(s, k));
+      hi = std::max(hi, raw_value(s, k));
+    }
+  const std::int32_t shift = std::min(lo, 0);
+  if (hi - shift > 0xFFFF)
+    throw Error(folder + ": values span " + std::to_string(lo) + ".." + std::to_string(hi) +
+                ", wider than 16 bits");
+  Volume v;
+  v.source = folder;
+  v.dims = {first.columns, first.rows, static_cast<int>(slices.size())};
+  v.spacing = glm::dvec3(first.spacing_x, first.spacing_y, spacing_z);
+  v.slope = first.slope;
+  v.intercept = first.intercept + first.slope * static_cast<double>(shift);
+  v.bits = bits_for(static_cast<std::uint32_t>(hi - shift));
+  v.data.resize(v.voxel_count());
+  const std::size_t per_slice = slices[0].words.size();
+  for (std::size_t z = 0; z < slices.size(); ++z)
+    for (std::size_t k = 0; k < per_slice; ++k)
+      v.data[z * per_slice + k] = static_cast<std::uint16_t>(raw_value(slices[z], k) - shift);
+  validate(v, folder);
+  return v;
+}
+
+}  // namespace voxcast::ref

@@ -1,0 +1,46 @@
+// Volume input: NIfTI-1 files, raw files, DICOM series and built-in phantoms.
+//
+// Every loader returns a validated Volume (see volume.hpp) or throws
+// voxcast::Error with a one-line message naming the file and the field at
+// fault ("head.nii.gz: dim[2] = -4 is not a valid size").
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "refmodel/volume/volume.hpp"
+
+namespace voxcast::ref {
+
+enum class RawType { U8, U16, I16 };
+
+struct RawSpec {
+  std::array<int, 3> dims{0, 0, 0};
+  RawType type = RawType::U8;
+  glm::dvec3 spacing{1.0, 1.0, 1.0};
+  bool big_endian = false;
+};
+
+// NIfTI-1 (.nii, .nii.gz) through niftilib. scl_slope/scl_inter are honoured:
+// integer data keep their integer values (shifted to be unsigned) and record
+// slope/intercept; float data are quantised to 16 bits over their range.
+Volume load_nifti(const std::string& path);
+
+// Headerless raw voxels, x fastest, little-endian unless spec.big_endian.
+// Signed data are shifted to unsigned (intercept records the shift).
+Volume load_raw(const std::string& path, const RawSpec& spec);
+
+// A folder holding the slices of one DICOM series (GDCM). CT slices are
+// converted to Hounsfield units through Rescale Slope/Intercept.
+Volume load_dicom_series(const std::string& folder);
+
+// Built-in phantoms, generated in code: "shepp-logan", "shells", "tube", "box".
+// `size` is the edge length in voxels (cubic grid).
+Volume make_phantom(const std::string& name, int size);
+
+// Resolves a scene's `volume.source`: "phantom:NAME[?size=N]", a NIfTI path, a
+// raw path (needs `raw`), or a folder of DICOM slices. `base_dir` resolves
+// relative paths (the scene file's folder).
+Volume load_volume(const std::string& source, const std::string& base_dir, const RawSpec* raw);
+
+}  // namespace voxcast::ref

@@ -1,0 +1,100 @@
+// The `voxcast` command as users and scripts run it: exit codes, one-line
+// errors, and the files it writes.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "cosim/image_io.hpp"
+
+namespace {
+
+struct Command {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+Command run(const std::string& args) {
+  Command r;
+  const std::string cmd = std::string(VOXCAST_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::filesystem::path temp_dir(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / ("voxcast_cli_" + name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+std::string scene(const char* name) { return std::string(VOXCAST_SOURCE_DIR) + "/scenes/" + name; }
+
+TEST(Cli, HelpOnEverySubcommand) {
+  for (const char* sub : {"", "render", "demo"}) {
+    const Command r = run(std::string(sub) + " --help");
+    EXPECT_EQ(r.status, 0) << sub;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+TEST(Cli, RenderWritesPngAndExrWithTheRequestedSize) {
+  const auto d = temp_dir("render");
+  const Command r = run("render " + scene("mip.toml") + " -o " + (d / "m.png").string() + " -o " +
+                    (d / "m.exr").string() + " --set render.width=40 --set render.height=30");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote    " + (d / "m.png").string()), std::string::npos);
+  const voxcast::ref::Image exr = voxcast::cosim::read_image((d / "m.exr").string());
+  EXPECT_EQ(exr.width, 40);
+  EXPECT_EQ(exr.height, 30);
+  const voxcast::ref::Image png = voxcast::cosim::read_image((d / "m.png").string());
+  EXPECT_EQ(png.width, 40);
+  // The two formats carry the same image: PNG is the EXR over a black
+  // background, rounded to 8 bits.
+  for (std::size_t i = 0; i < exr.pixels.size(); ++i)
+    EXPECT_NEAR(png.pixels[i].r, exr.pixels[i].r, 0.5 / 255 + 1e-6);
+}
+
+TEST(Cli, StereoWritesTwoEyes) {
+  const auto d = temp_dir("stereo");
+  const Command r = run("render " + scene("mip.toml") + " -o " + (d / "s.png").string() +
+                    " --set camera.stereo_deg=4 --set render.width=16 --set render.height=16");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(d / "s_left.png"));
+  EXPECT_TRUE(std::filesystem::exists(d / "s_right.png"));
+}
+
+TEST(Cli, ErrorsAreOneLineAndNonZero) {
+  const auto d = temp_dir("errors");
+  const std::string out = " -o " + (d / "x.png").string();
+  struct Case {
+    std::string args, expected;
+  } cases[] = {
+      {"render /nonexistent.toml" + out, "voxcast: /nonexistent.toml: cannot open scene file\n"},
+      {"render " + scene("mip.toml") + out + " --set render.oversampling=32",
+       "voxcast: --set render.oversampling=32: render.oversampling = 32 is outside [0.25, 16]\n"},
+      {"render " + scene("mip.toml") + out + " --set volume.source=phantom:nope",
+       "voxcast: phantom 'nope' is unknown"},
+      {"render " + scene("mip.toml") + " -o " + (d / "x.bmp").string(),
+       "unsupported image type \".bmp\" (use .exr or .png)\n"},
+      {"render " + scene("mip.toml") + out + " --set volume.crop.lo=[0,0,0] --set volume.crop.hi=[0,0,200]",
+       "volume.crop.hi[2] = 200 is outside the volume"},
+  };
+  for (const Case& c : cases) {
+    const Command r = run(c.args);
+    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "not one line: " << r.output;
+  }
+}
+
+}  // namespace
