@@ -17,7 +17,18 @@ namespace fs = std::filesystem;
 constexpr const char* kPhantomPrefix = "phantom:";
 constexpr int kDefaultPhantomSize = 128;  // as docs/scenes.md states
 
-// "phantom:NAME" or "phantom:NAME?size=N".
+// A whole number from a phantom parameter, or an Error naming it.
+int parse_phantom_int(const std::string& source, const std::string& key, const std::string& text) {
+  int value = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, err] = std::from_chars(text.data(), end, value);
+  if (text.empty() || err != std::errc{} || ptr != end)
+    throw Error("volume.source \"" + source + "\": " + key + " \"" + text +
+                "\" is not a whole number");
+  return value;
+}
+
+// "phantom:NAME" with optional parameters "?size=N&aa=N" in any order.
 Volume load_phantom(const std::string& source) {
   const std::string spec = source.substr(std::char_traits<char>::length(kPhantomPrefix));
   const std::size_t q = spec.find('?');
@@ -25,20 +36,24 @@ Volume load_phantom(const std::string& source) {
   if (name.empty())
     throw Error("volume.source \"" + source + "\": no phantom name after \"phantom:\"");
   int size = kDefaultPhantomSize;
-  if (q != std::string::npos) {
-    const std::string query = spec.substr(q + 1);
-    const std::string key = "size=";
-    if (query.compare(0, key.size(), key) != 0)
-      throw Error("volume.source \"" + source + "\": unknown phantom parameter \"" + query +
-                  "\" (only size=N)");
-    const std::string text = query.substr(key.size());
-    const char* end = text.data() + text.size();
-    const auto [ptr, err] = std::from_chars(text.data(), end, size);
-    if (text.empty() || err != std::errc{} || ptr != end)
-      throw Error("volume.source \"" + source + "\": size \"" + text +
-                  "\" is not a whole number of voxels");
+  int aa = 1;
+  std::string query = q == std::string::npos ? "" : spec.substr(q + 1);
+  while (!query.empty()) {
+    const std::size_t amp = query.find('&');
+    const std::string param = query.substr(0, amp);
+    query = amp == std::string::npos ? "" : query.substr(amp + 1);
+    const std::size_t eq = param.find('=');
+    const std::string key = param.substr(0, eq);
+    const std::string text = eq == std::string::npos ? "" : param.substr(eq + 1);
+    if (key == "size")
+      size = parse_phantom_int(source, key, text);
+    else if (key == "aa")
+      aa = parse_phantom_int(source, key, text);
+    else
+      throw Error("volume.source \"" + source + "\": unknown phantom parameter \"" + param +
+                  "\" (size=N, aa=N)");
   }
-  return make_phantom(name, size);
+  return make_phantom(name, size, aa);
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {

@@ -35,8 +35,11 @@ Volume load_raw(const std::string& path, const RawSpec& spec);
 Volume load_dicom_series(const std::string& folder);
 
 // Built-in phantoms, generated in code: "shepp-logan", "shells", "tube", "box".
-// `size` is the edge length in voxels (cubic grid).
-Volume make_phantom(const std::string& name, int size);
+// `size` is the edge length in voxels (cubic grid). `aa` > 1 gives partial
+// volume: each voxel is the mean of aa^3 point samples inside it (what a
+// scanner's finite voxel integrates); aa = 1 samples the voxel centre, the
+// closed forms the tests rely on.
+Volume make_phantom(const std::string& name, int size, int aa = 1);
 
 // Resolves a scene's `volume.source`: "phantom:NAME[?size=N]", a NIfTI path, a
 // raw path (needs `raw`), or a folder of DICOM slices. `base_dir` resolves

@@ -22,9 +22,15 @@ constexpr int kMinSize = 2;
 constexpr int kMaxSize = 1024;
 constexpr const char* kPhantomNames = "shepp-logan, shells, tube, box";
 
-double normalised(int i, int n) {
-  return (2.0 * i - static_cast<double>(n - 1)) / static_cast<double>(n - 1);
+// `offset` (in voxels, within the voxel) is 0 for the voxel centre; partial
+// volume averages several offsets (make_phantom's `aa`).
+double normalised(int i, int n, double offset = 0.0) {
+  return (2.0 * (i + offset) - static_cast<double>(n - 1)) / static_cast<double>(n - 1);
 }
+
+struct SubVoxel {
+  double x = 0.0, y = 0.0, z = 0.0;
+};
 
 // --- shepp-logan ------------------------------------------------------------
 // Kak & Slaney's 3-D Shepp-Logan head (Principles of Computerized Tomographic
@@ -60,7 +66,7 @@ std::uint16_t shepp_logan_grey(int tenths) {
   return static_cast<std::uint16_t>((tenths * 255 + 5) / 10);
 }
 
-void fill_shepp_logan(Volume& v) {
+void fill_shepp_logan(Volume& v, SubVoxel o) {
   const int n = v.dims[0];
   struct Prepared {
     Ellipsoid e;
@@ -80,10 +86,10 @@ void fill_shepp_logan(Volume& v) {
   // dropping a voxel.
   constexpr double kMargin = 1e-9;
   parallel_for(n, [&](int z) {
-    const double uz = normalised(z, n);
+    const double uz = normalised(z, n, o.z);
     std::array<std::size_t, kSheppLogan.size()> row_active{};
     for (int y = 0; y < n; ++y) {
-      const double uy = normalised(y, n);
+      const double uy = normalised(y, n, o.y);
       std::size_t active = 0;
       for (std::size_t k = 0; k < prepared.size(); ++k) {
         const Prepared& p = prepared[k];
@@ -92,7 +98,7 @@ void fill_shepp_logan(Volume& v) {
       }
       std::uint16_t* row = &v.data[v.index(0, y, z)];
       for (int x = 0; x < n; ++x) {
-        const double ux = normalised(x, n);
+        const double ux = normalised(x, n, o.x);
         int tenths = 0;
         for (std::size_t r = 0; r < active; ++r) {
           const Prepared& p = prepared[row_active[r]];
@@ -121,15 +127,15 @@ constexpr std::array<Shell, 3> kShells{{
     {0.3, 0.22, 240},
 }};
 
-void fill_shells(Volume& v) {
+void fill_shells(Volume& v, SubVoxel o) {
   const int n = v.dims[0];
   parallel_for(n, [&](int z) {
-    const double uz = normalised(z, n);
+    const double uz = normalised(z, n, o.z);
     for (int y = 0; y < n; ++y) {
-      const double uy = normalised(y, n);
+      const double uy = normalised(y, n, o.y);
       std::uint16_t* row = &v.data[v.index(0, y, z)];
       for (int x = 0; x < n; ++x) {
-        const double ux = normalised(x, n);
+        const double ux = normalised(x, n, o.x);
         const double r2 = ux * ux + uy * uy + uz * uz;
         std::uint16_t value = 0;
         for (const Shell& s : kShells)
@@ -178,7 +184,7 @@ double arc_distance2(const Vec3& p, const Vec3& c, double r) {
   return std::min(d_start, d_end);
 }
 
-void fill_tube(Volume& v) {
+void fill_tube(Volume& v, SubVoxel o) {
   const int n = v.dims[0];
   const double h = static_cast<double>(n - 1) / 2.0;  // voxels per normalised unit
   auto at = [h](double x, double y, double z) { return Vec3{x * h, y * h, z * h}; };
@@ -199,9 +205,9 @@ void fill_tube(Volume& v) {
   // branch_r + 1.5 voxels of its plane z = const; other rows are pure tissue.
   const double reach = tube_r + kWallVoxels + 1.0;
   parallel_for(n, [&](int z) {
-    const double pz = static_cast<double>(z) - h;
+    const double pz = static_cast<double>(z) + o.z - h;
     for (int y = 0; y < n; ++y) {
-      const double py = static_cast<double>(y) - h;
+      const double py = static_cast<double>(y) + o.y - h;
       std::uint16_t* row = &v.data[v.index(0, y, z)];
       const bool near_plane = std::abs(py) <= reach;
       const bool near_branch1 = std::abs(pz - b1a.z) <= reach;
@@ -211,7 +217,7 @@ void fill_tube(Volume& v) {
         continue;
       }
       for (int x = 0; x < n; ++x) {
-        const Vec3 p{static_cast<double>(x) - h, py, pz};
+        const Vec3 p{static_cast<double>(x) + o.x - h, py, pz};
         const double d_s1 = segment_distance2(p, s1a, s1b);
         const double d_arc = arc_distance2(p, arc_c, arc_r);
         const double d_s2 = segment_distance2(p, s2a, s2b);
@@ -234,7 +240,8 @@ void fill_tube(Volume& v) {
 // 200 where all three indices are in [n/4, n-1-n/4] (integer division), 0 elsewhere.
 constexpr std::uint16_t kBoxValue = 200;
 
-void fill_box(Volume& v) {
+// The box is axis-aligned on voxel boundaries: partial volume leaves it as is.
+void fill_box(Volume& v, SubVoxel) {
   const int n = v.dims[0];
   const int lo = n / 4, hi = n - 1 - n / 4;
   parallel_for(n, [&](int z) {
@@ -247,10 +254,32 @@ void fill_box(Volume& v) {
   });
 }
 
+// Partial volume: the mean of aa^3 point samples on a regular sub-grid of each
+// voxel (what a scanner's finite voxel integrates), rounded to the nearest
+// stored value. aa = 1 samples the voxel centre only.
+void fill_partial_volume(Volume& v, void (*fill)(Volume&, SubVoxel), int aa) {
+  if (aa == 1) {
+    fill(v, SubVoxel{});
+    return;
+  }
+  std::vector<std::uint32_t> sum(v.voxel_count(), 0);
+  Volume sub = v;
+  for (int k = 0; k < aa; ++k)
+    for (int j = 0; j < aa; ++j)
+      for (int i = 0; i < aa; ++i) {
+        const auto offset = [aa](int t) { return (t + 0.5) / aa - 0.5; };
+        fill(sub, SubVoxel{offset(i), offset(j), offset(k)});
+        for (std::size_t n = 0; n < sum.size(); ++n) sum[n] += sub.data[n];
+      }
+  const std::uint32_t count = static_cast<std::uint32_t>(aa * aa * aa);
+  for (std::size_t n = 0; n < sum.size(); ++n)
+    v.data[n] = static_cast<std::uint16_t>((sum[n] + count / 2) / count);
+}
+
 }  // namespace
 
-Volume make_phantom(const std::string& name, int size) {
-  void (*fill)(Volume&) = nullptr;
+Volume make_phantom(const std::string& name, int size, int aa) {
+  void (*fill)(Volume&, SubVoxel) = nullptr;
   if (name == "shepp-logan")
     fill = fill_shepp_logan;
   else if (name == "shells")
@@ -265,6 +294,9 @@ Volume make_phantom(const std::string& name, int size) {
   if (size < kMinSize || size > kMaxSize)
     throw Error("phantom:" + name + ": size " + std::to_string(size) + " is outside " +
                 std::to_string(kMinSize) + ".." + std::to_string(kMaxSize));
+  if (aa < 1 || aa > 8)
+    throw Error("phantom:" + name + ": aa " + std::to_string(aa) +
+                " is outside 1..8 (sub-samples per voxel edge)");
 
   Volume v;
   v.dims = {size, size, size};
@@ -272,9 +304,10 @@ Volume make_phantom(const std::string& name, int size) {
   v.bits = 8;
   v.slope = 1.0;
   v.intercept = 0.0;
-  v.source = "phantom:" + name + "?size=" + std::to_string(size);
+  v.source = "phantom:" + name + "?size=" + std::to_string(size) +
+             (aa > 1 ? "&aa=" + std::to_string(aa) : "");
   v.data.assign(v.voxel_count(), 0);
-  fill(v);
+  fill_partial_volume(v, fill, aa);
   validate(v, v.source);
   return v;
 }
