@@ -1,6 +1,9 @@
 #include "cosim/commands.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -8,7 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/engines.hpp"
 #include "cosim/image_io.hpp"
+#include "refmodel/bittrue/raycaster.hpp"
+#include "refmodel/precision/presets.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 #include "refmodel/volume/loaders.hpp"
@@ -52,7 +58,8 @@ std::vector<View> views_of(const ref::Scene& scene) {
 void write_report(const std::string& path, const ref::Scene& scene, const RenderSummary& s) {
   nlohmann::json j;
   j["scene"] = scene.origin;
-  j["engine"] = "refmodel";
+  j["engine"] = to_string(s.engine);
+  if (s.engine != Engine::Ref) j["profile"] = scene.precision_name;
   j["volume"] = {{"source", s.volume_source}, {"dims", s.dims}, {"bits", s.bits}};
   j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
                 {"mode", ref::to_string(scene.render.mode)},
@@ -70,7 +77,44 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
   out << j.dump(2) << "\n";
 }
 
+double max_abs_gradient(const ref::GradientField& g) {
+  double m = 0.0;
+  for (const glm::vec3& v : g.g)
+    m = std::max({m, std::abs(static_cast<double>(v.x)), std::abs(static_cast<double>(v.y)),
+                  std::abs(static_cast<double>(v.z))});
+  return m;
+}
+
+// One view with the chosen engine; the fixed-point engines' output is scaled
+// back to [0, 1] for writing.
+ref::Image render_view(const ref::Scene& scene, const ref::Volume& volume,
+                       const ref::GradientField& gradients, const ref::CameraPose& pose,
+                       Engine engine, const bittrue::VoxelMemory* memory, ref::FrameStats& fs) {
+  const ref::RenderInputs in = ref::make_render_inputs(scene, volume, gradients, pose);
+  if (engine == Engine::Ref) return ref::render_image(in, scene.render.threads, &fs);
+  const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
+  if (engine == Engine::BitTrue)
+    return bittrue::bt_render_image(setup, *memory, scene.render.threads, &fs).to_image();
+  return hls_render_image(setup, *memory, scene.render.threads, &fs).to_image();
+}
+
 }  // namespace
+
+Engine parse_engine(const std::string& name) {
+  if (name == "ref") return Engine::Ref;
+  if (name == "bittrue") return Engine::BitTrue;
+  if (name == "hls") return Engine::Hls;
+  throw Error("unknown engine \"" + name + "\" (ref, bittrue, hls)");
+}
+
+const char* to_string(Engine e) {
+  switch (e) {
+    case Engine::Ref: return "refmodel (double precision)";
+    case Engine::BitTrue: return "bit-true reference";
+    case Engine::Hls: return "hls kernels";
+  }
+  return "?";
+}
 
 RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) {
   RenderSummary s;
@@ -85,6 +129,17 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   s.dims = volume.dims;
   s.bits = volume.bits;
   s.threads = ref::worker_count(scene.render.threads);
+  s.engine = options.engine;
+  // The fixed-point engines hold the volume as voxel words in 8 banks.
+  std::optional<bittrue::VoxelMemory> memory;
+  if (options.engine != Engine::Ref) {
+    check_profile_fits(scene.precision, volume, max_abs_gradient(gradients));
+    if (options.engine == Engine::Hls && !hls_supports(scene.precision))
+      throw Error("precision profile " + scene.precision_name +
+                  " is not compiled into the hls engine (compiled: " + hls_supported_profiles() +
+                  ")");
+    memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
+  }
 
   for (const std::string& out : options.outputs) {
     const std::filesystem::path dir = std::filesystem::path(out).parent_path();
@@ -92,9 +147,9 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   }
   const auto t_render = Clock::now();
   for (const View& view : views_of(scene)) {
-    const ref::RenderInputs in = ref::make_render_inputs(scene, volume, gradients, view.pose);
     ref::FrameStats fs;
-    const ref::Image img = ref::render_image(in, scene.render.threads, &fs);
+    const ref::Image img = render_view(scene, volume, gradients, view.pose, options.engine,
+                                       memory ? &*memory : nullptr, fs);
     s.stats.samples += fs.samples;
     s.stats.rays += fs.rays;
     s.stats.rays_hit += fs.rays_hit;
@@ -123,7 +178,9 @@ void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummar
      << ref::to_string(scene.render.mode) << ", " << ref::to_string(scene.camera.projection)
      << ", oversampling " << scene.render.oversampling << ", ERT "
      << scene.render.ert_threshold << "\n"
-     << "engine   refmodel (double precision), " << s.threads << " threads, "
+     << "engine   " << to_string(s.engine)
+     << (s.engine == Engine::Ref ? "" : ", profile " + scene.precision_name) << ", " << s.threads
+     << " threads, "
      << s.render_seconds << " s\n"
      << "rays     " << 100.0 * static_cast<double>(s.stats.rays_hit) / rays << "% hit the volume, "
      << 100.0 * static_cast<double>(s.stats.rays_terminated_early) / rays << "% terminated early, "

@@ -10,9 +10,14 @@
 
 namespace voxcast::cosim {
 
+enum class Engine { Ref, BitTrue, Hls };
+Engine parse_engine(const std::string& name);  // "ref" | "bittrue" | "hls"
+const char* to_string(Engine e);
+
 struct RenderOptions {
   std::vector<std::string> outputs;  // each .png or .exr; the same frames go to each
   std::string report_json;           // optional JSON report path
+  Engine engine = Engine::Ref;
 };
 
 // What one `render` did, for the summary line and the JSON report.
@@ -23,12 +28,13 @@ struct RenderSummary {
   double load_seconds = 0.0;
   double render_seconds = 0.0;
   int threads = 0;
+  Engine engine = Engine::Ref;
   ref::FrameStats stats;  // summed over every frame and eye
   std::vector<std::string> written;
 };
 
 // Loads the scene's volume, renders every frame (camera.path) and eye
-// (camera.stereo_deg) with the reference ray caster and writes the images.
+// (camera.stereo_deg) with the chosen engine and writes the images.
 // Frame f of a path gets "_NNNN" before the extension, stereo eyes "_left" and
 // "_right".
 RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options);

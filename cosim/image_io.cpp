@@ -61,6 +61,26 @@ void write_image(const std::string& path, const ref::Image& image, const glm::dv
   }
 }
 
+void write_exr_layers(const std::string& path, const std::vector<Layer>& layers) {
+  if (layers.empty()) throw Error(path + ": no layers to write");
+  const int w = layers.front().image->width, h = layers.front().image->height;
+  const int nch = 4 * static_cast<int>(layers.size());
+  OIIO::ImageSpec spec(w, h, nch, OIIO::TypeDesc::FLOAT);
+  spec.channelnames.clear();
+  for (const Layer& l : layers)
+    for (const char* c : {"R", "G", "B", "A"}) spec.channelnames.push_back(l.name + "." + c);
+  spec.attribute("compression", "zip");
+  std::vector<float> data(static_cast<std::size_t>(w) * h * nch);
+  for (std::size_t li = 0; li < layers.size(); ++li) {
+    const ref::Image& img = *layers[li].image;
+    if (img.width != w || img.height != h) throw Error(path + ": layers differ in size");
+    for (std::size_t i = 0; i < img.pixels.size(); ++i)
+      for (int c = 0; c < 4; ++c)
+        data[i * nch + 4 * li + c] = static_cast<float>(img.pixels[i][c]);
+  }
+  write_pixels(path, spec, data.data());
+}
+
 ref::Image read_image(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw Error(path + ": cannot read image (" + OIIO::geterror() + ")");

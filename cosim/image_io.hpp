@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -17,6 +18,14 @@ namespace voxcast::cosim {
 void check_image_path(const std::string& path);
 
 void write_image(const std::string& path, const ref::Image& image, const glm::dvec3& background);
+
+// A multi-layer OpenEXR file: each named layer's RGBA as channels
+// "NAME.R", "NAME.G", "NAME.B", "NAME.A" (all layers the same size).
+struct Layer {
+  std::string name;
+  const ref::Image* image;
+};
+void write_exr_layers(const std::string& path, const std::vector<Layer>& layers);
 
 // Reads an image written by write_image (any format OpenImageIO reads) as RGBA.
 ref::Image read_image(const std::string& path);

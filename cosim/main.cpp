@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cosim/commands.hpp"
+#include "cosim/cosim.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
@@ -37,7 +38,19 @@ int main(int argc, char** argv) {
   render->add_option("-o,--output", render_opts.outputs, "Output image(s): .png and/or .exr")
       ->required();
   render->add_option("--report", render_opts.report_json, "Write a JSON report here");
+  std::string engine_name = "ref";
+  render->add_option("--engine", engine_name, "ref (double), bittrue (bit-true reference) or hls")
+      ->capture_default_str();
   add_set_option(*render, render_sets);
+
+  // cosim SCENE --out DIR
+  std::string cosim_scene, cosim_out;
+  Overrides cosim_sets;
+  CLI::App* cosim = app.add_subcommand(
+      "cosim", "Run float, bit-true and hls engines; prove hls == bit-true; measure the error");
+  cosim->add_option("scene", cosim_scene, "Scene file (TOML)")->required();
+  cosim->add_option("--out", cosim_out, "Output folder (report.json, layers.exr, PNGs)")->required();
+  add_set_option(*cosim, cosim_sets);
 
   // demo
   Overrides demo_sets;
@@ -57,8 +70,20 @@ int main(int argc, char** argv) {
   try {
     if (*render) {
       const auto scene = voxcast::ref::load_scene_file(scene_path, render_sets);
+      render_opts.engine = voxcast::cosim::parse_engine(engine_name);
       const auto summary = voxcast::cosim::run_render(scene, render_opts);
       voxcast::cosim::print_summary(std::cout, scene, summary);
+    } else if (*cosim) {
+      const auto scene = voxcast::ref::load_scene_file(cosim_scene, cosim_sets);
+      const auto r = voxcast::cosim::run_cosim(scene, cosim_out);
+      voxcast::cosim::print_cosim_summary(std::cout, scene, r);
+      if (!r.bit_exact) {
+        std::cerr << "voxcast: hls and bit-true differ at pixel (" << r.mismatch.x << ", "
+                  << r.mismatch.y << "), sample " << r.mismatch.sample << ", first in the "
+                  << voxcast::bittrue::to_string(r.mismatch.unit) << "; reproducer "
+                  << r.mismatch.reproducer << "\n";
+        return 3;
+      }
     } else if (*demo) {
       const auto scene = voxcast::ref::default_scene(demo_sets);
       voxcast::cosim::RenderOptions opts{{demo_out + ".png", demo_out + ".exr"}, demo_out + ".json"};

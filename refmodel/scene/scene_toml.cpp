@@ -499,6 +499,83 @@ Scene default_scene(const Overrides& overrides) {
   return parse_scene(default_scene_text(), "default scene", ".", overrides);
 }
 
+namespace {
+toml::array to_array(const glm::dvec3& v) { return toml::array{v.x, v.y, v.z}; }
+toml::array to_array(const std::array<int, 3>& v) { return toml::array{v[0], v[1], v[2]}; }
+toml::table pose_table(const CameraPose& p) {
+  return toml::table{{"eye", to_array(p.eye)}, {"center", to_array(p.center)},
+                     {"up", to_array(p.up)}};
+}
+}  // namespace
+
+std::string scene_to_toml(const Scene& s) {
+  toml::table volume{{"source", s.volume.source},
+                     {"gradient", to_string(s.volume.gradient)}};
+  if (s.volume.source.rfind("phantom:", 0) != 0) {
+    const std::filesystem::path src(s.volume.source);
+    volume.insert_or_assign(
+        "source", (src.is_absolute() ? src : std::filesystem::absolute(
+                                                  std::filesystem::path(s.base_dir) / src))
+                      .lexically_normal()
+                      .string());
+  }
+  if (s.volume.raw) {
+    const RawSpec& r = *s.volume.raw;
+    volume.insert("dims", to_array(r.dims));
+    volume.insert("type", r.type == RawType::U8 ? "u8" : r.type == RawType::U16 ? "u16" : "i16");
+    volume.insert("spacing", to_array(r.spacing));
+    volume.insert("endian", r.big_endian ? "big" : "little");
+  }
+  if (s.volume.crop)
+    volume.insert("crop", toml::table{{"lo", to_array(s.volume.crop->lo)},
+                                      {"hi", to_array(s.volume.crop->hi)}});
+  toml::array points;
+  for (const TfPoint& p : s.tf_points)
+    points.push_back(toml::table{{"value", p.value}, {"color", to_array(p.color)},
+                                 {"alpha", p.alpha}});
+  toml::table classification{{"interpolation", to_string(s.tf_interpolation)},
+                             {"points", points},
+                             {"ka", s.material.ka},
+                             {"kd", s.material.kd},
+                             {"ks", s.material.ks},
+                             {"shininess", s.material.shininess}};
+  toml::table camera = pose_table(s.camera.pose);
+  camera.insert("projection", to_string(s.camera.projection));
+  camera.insert("fov_deg", s.camera.fov_deg);
+  camera.insert("height", s.camera.height);
+  camera.insert("stereo_deg", s.camera.stereo_deg);
+  if (!s.camera.path.empty()) {
+    toml::array path;
+    for (const CameraPose& k : s.camera.path) path.push_back(pose_table(k));
+    camera.insert("path", path);
+  }
+  toml::table render{{"width", s.render.width},
+                     {"height", s.render.height},
+                     {"mode", to_string(s.render.mode)},
+                     {"oversampling", s.render.oversampling},
+                     {"ert_threshold", s.render.ert_threshold},
+                     {"background", to_array(s.render.background)},
+                     {"frames", s.render.frames},
+                     {"threads", s.render.threads}};
+  toml::array lights;
+  for (const Light& l : s.lights) {
+    toml::table t{{"type", to_string(l.type)}, {"intensity", l.intensity}};
+    if (l.type == LightType::Directional) t.insert("direction", to_array(l.direction));
+    lights.push_back(t);
+  }
+  const std::string preset = s.precision_name.substr(0, s.precision_name.find('+'));
+  toml::table precision{{"profile", preset}};
+  const PrecisionProfile base = preset_profile(preset);
+  for (const ProfileField& f : profile_fields())
+    if (s.precision.*f.member != base.*f.member) precision.insert(f.name, s.precision.*f.member);
+  const toml::table root{{"volume", volume}, {"classification", classification},
+                         {"camera", camera}, {"render", render},
+                         {"lights", lights}, {"precision", precision}};
+  std::ostringstream os;
+  os << root << "\n";
+  return os.str();
+}
+
 std::vector<std::string> known_scene_keys() {
   std::vector<std::string> keys;
   for (const auto& [table, names] : schema())

@@ -25,6 +25,10 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
 const std::string& default_scene_text();
 Scene default_scene(const Overrides& overrides = {});
 
+// The scene as TOML that parse_scene reads back to an equal scene (relative
+// volume paths are made absolute), for reproducers and reports.
+std::string scene_to_toml(const Scene& scene);
+
 // Every key the parser accepts, dotted ("render.oversampling",
 // "lights[].intensity"); docs/scenes.md must document each one (a test checks).
 std::vector<std::string> known_scene_keys();

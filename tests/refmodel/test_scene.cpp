@@ -154,3 +154,24 @@ TEST(Scene, DocsDocumentEveryKey) {
 
 }  // namespace
 }  // namespace voxcast::test
+
+namespace voxcast::test {
+namespace {
+
+TEST(Scene, WritesTomlThatReadsBackEqual) {
+  for (const char* name : {"default.toml", "mip.toml", "endoscopy.toml", "colin27.toml"}) {
+    const ref::Scene a = ref::load_scene_file(std::string(VOXCAST_SOURCE_DIR) + "/scenes/" + name,
+                                              {"precision.weight_bits=5", "camera.stereo_deg=4"});
+    const ref::Scene b = ref::parse_scene(ref::scene_to_toml(a), "written", ".");
+    EXPECT_EQ(ref::scene_to_toml(b), ref::scene_to_toml(a)) << name;
+    EXPECT_EQ(b.precision, a.precision) << name;
+    EXPECT_EQ(b.precision_name, a.precision_name) << name;
+    EXPECT_EQ(b.render.oversampling, a.render.oversampling) << name;
+    EXPECT_EQ(b.camera.pose.eye, a.camera.pose.eye) << name;
+    ASSERT_EQ(b.tf_points.size(), a.tf_points.size()) << name;
+    EXPECT_EQ(b.tf_points.back().alpha, a.tf_points.back().alpha) << name;
+  }
+}
+
+}  // namespace
+}  // namespace voxcast::test

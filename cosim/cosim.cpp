@@ -1,0 +1,181 @@
+#include "cosim/cosim.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/engines.hpp"
+#include "cosim/image_io.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/precision/presets.hpp"
+#include "refmodel/scene/scene_toml.hpp"
+#include "refmodel/volume/loaders.hpp"
+
+namespace voxcast::cosim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double max_abs_gradient(const ref::GradientField& g) {
+  double m = 0.0;
+  for (const glm::vec3& v : g.g)
+    m = std::max({m, std::abs(static_cast<double>(v.x)), std::abs(static_cast<double>(v.y)),
+                  std::abs(static_cast<double>(v.z))});
+  return m;
+}
+
+// Signed difference hls - float, per channel, in [−1, 1] of full scale.
+ref::Image difference(const ref::Image& a, const ref::Image& b) {
+  ref::Image d(a.width, a.height);
+  for (std::size_t i = 0; i < d.pixels.size(); ++i) d.pixels[i] = a.pixels[i] - b.pixels[i];
+  return d;
+}
+
+// The first pixel, in row-major order, where the two images differ.
+bool first_difference(const ref::QuantImage& a, const ref::QuantImage& b, int& x, int& y) {
+  for (y = 0; y < a.height; ++y)
+    for (x = 0; x < a.width; ++x)
+      if (a.at(x, y) != b.at(x, y)) return true;
+  return false;
+}
+
+// A scene that reproduces a mismatch: the scene as run, with a comment naming
+// the pixel, sample and unit. tests/regress/ holds the ones worth keeping.
+std::string write_reproducer(const std::string& dir, const ref::Scene& scene, const Mismatch& m) {
+  const std::string path = (std::filesystem::path(dir) / "reproducer.toml").string();
+  std::ofstream out(path);
+  if (!out) throw Error(path + ": cannot write the reproducer");
+  out << "# voxcast cosim reproducer: hls and bit-true differ at pixel (" << m.x << ", " << m.y
+      << "), sample " << m.sample << ", first in the " << bittrue::to_string(m.unit) << ".\n"
+      << "# Run: voxcast cosim " << path << " --out DIR\n"
+      << ref::scene_to_toml(scene);
+  return path;
+}
+
+nlohmann::json accuracy_json(const Accuracy& a) {
+  return {{"psnr_db", std::isfinite(a.psnr_db) ? nlohmann::json(a.psnr_db) : nlohmann::json("inf")},
+          {"max_abs_err_lsb", a.max_abs_err_lsb},
+          {"mean_abs_err_lsb", a.mean_abs_err_lsb},
+          {"rms_err_lsb", a.rms_err_lsb},
+          {"pct_within_1lsb", a.pct_within_1lsb},
+          {"worst_pixel", {a.worst_x, a.worst_y}}};
+}
+
+}  // namespace
+
+CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
+  CosimResult r;
+  std::filesystem::create_directories(out_dir);
+  const ref::Volume volume = ref::load_volume(scene.volume.source, scene.base_dir,
+                                              scene.volume.raw ? &*scene.volume.raw : nullptr);
+  ref::validate_against_volume(scene, volume);
+  const ref::GradientField gradients = ref::compute_gradients(volume, scene.volume.gradient);
+  check_profile_fits(scene.precision, volume, max_abs_gradient(gradients));
+  if (!hls_supports(scene.precision))
+    throw Error("precision profile " + scene.precision_name +
+                " is not compiled into the hls engine (compiled: " + hls_supported_profiles() +
+                ")");
+
+  // One frame: the camera pose (a path's first keyframe), mono.
+  const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
+  const ref::RenderInputs inputs = ref::make_render_inputs(scene, volume, gradients, pose);
+  const int threads = scene.render.threads;
+
+  ref::FrameStats fs_float, fs_hls;
+  auto t0 = Clock::now();
+  const ref::Image truth = ref::render_image(inputs, threads, &fs_float);
+  r.seconds_float = seconds_since(t0);
+
+  const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, inputs);
+  const bittrue::VoxelMemory memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
+  t0 = Clock::now();
+  const ref::QuantImage bt = bittrue::bt_render_image(setup, memory, threads);
+  r.seconds_bittrue = seconds_since(t0);
+  t0 = Clock::now();
+  const ref::QuantImage hls = hls_render_image(setup, memory, threads, &fs_hls);
+  r.seconds_hls = seconds_since(t0);
+  r.samples_float = fs_float.samples;
+  r.samples_hls = fs_hls.samples;
+
+  r.bit_exact = hls.pixels == bt.pixels;
+  if (!r.bit_exact) {
+    Mismatch& m = r.mismatch;
+    first_difference(hls, bt, m.x, m.y);
+    bittrue::RayTrace bt_trace;
+    bittrue::bt_cast_ray(setup, memory, m.x, m.y, &bt_trace);
+    const bittrue::Divergence d =
+        bittrue::first_divergence(hls_trace_ray(setup, memory, m.x, m.y), bt_trace);
+    m.sample = d.sample;
+    m.unit = d.unit;
+    m.reproducer = write_reproducer(out_dir, scene, m);
+    r.written.push_back(m.reproducer);
+  }
+  r.accuracy = measure_accuracy(hls, truth);
+
+  // Images: float, hls, bit-true, the signed difference and a heat map.
+  const ref::Image hls_img = hls.to_image();
+  const ref::Image diff = difference(hls_img, truth);
+  const auto path = [&](const char* name) { return (std::filesystem::path(out_dir) / name).string(); };
+  write_exr_layers(path("layers.exr"), {{"float", &truth}, {"hls", &hls_img}, {"diff", &diff}});
+  write_image(path("float.png"), truth, scene.render.background);
+  write_image(path("hls.png"), hls_img, scene.render.background);
+  write_image(path("bittrue.png"), bt.to_image(), scene.render.background);
+  write_image(path("diff.png"), error_heat_map(hls, truth, 4.0), glm::dvec3(0.0));
+  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png"})
+    r.written.push_back(path(f));
+
+  nlohmann::json j;
+  j["scene"] = scene.origin;
+  j["bit_exact"] = r.bit_exact;
+  j["engines"] = {"float", "bittrue", "hls"};
+  j["profile"] = scene.precision_name;
+  j["profile_widths"] = nlohmann::json::object();
+  for (const ProfileField& f : profile_fields()) j["profile_widths"][f.name] = scene.precision.*f.member;
+  const nlohmann::json acc = accuracy_json(r.accuracy);
+  for (auto it = acc.begin(); it != acc.end(); ++it) j[it.key()] = it.value();
+  j["diff_heat_map_full_scale_lsb"] = 4.0;
+  if (!r.bit_exact)
+    j["mismatch"] = {{"pixel", {r.mismatch.x, r.mismatch.y}},
+                     {"sample", r.mismatch.sample},
+                     {"unit", bittrue::to_string(r.mismatch.unit)},
+                     {"reproducer", r.mismatch.reproducer}};
+  j["samples"] = {{"float", r.samples_float}, {"hls", r.samples_hls}};
+  j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls}};
+  j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
+                {"mode", ref::to_string(scene.render.mode)},
+                {"oversampling", scene.render.oversampling}};
+  std::ofstream out(path("report.json"));
+  if (!out) throw Error(path("report.json") + ": cannot write the report");
+  out << j.dump(2) << "\n";
+  r.written.push_back(path("report.json"));
+  return r;
+}
+
+void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r) {
+  const Accuracy& a = r.accuracy;
+  const auto rate = [](std::uint64_t n, double s) {
+    return s > 0 ? static_cast<double>(n) / s / 1e6 : 0.0;
+  };
+  os << std::fixed << std::setprecision(2);
+  os << "scene      " << scene.origin << " (" << scene.render.width << "x" << scene.render.height
+     << " " << ref::to_string(scene.render.mode) << ", oversampling " << scene.render.oversampling
+     << ")\n"
+     << "profile    " << scene.precision_name << "\n"
+     << "bit-exact  " << (r.bit_exact ? "yes: hls == bit-true on every pixel" : "NO") << "\n"
+     << "accuracy   hls vs float: PSNR " << a.psnr_db << " dB, max " << a.max_abs_err_lsb
+     << " LSB, rms " << std::setprecision(3) << a.rms_err_lsb << " LSB, " << std::setprecision(2)
+     << a.pct_within_1lsb << "% of pixels within 1 LSB\n"
+     << "speed      float " << rate(r.samples_float, r.seconds_float) << " M samples/s, hls "
+     << rate(r.samples_hls, r.seconds_hls) << " M samples/s, bit-true " << r.seconds_bittrue
+     << " s\n";
+  for (const std::string& w : r.written) os << "wrote      " << w << "\n";
+}
+
+}  // namespace voxcast::cosim

@@ -1,0 +1,37 @@
+// `voxcast cosim`: one scene through the float reference, the bit-true
+// reference and the hls kernels; proves hls == bit-true on every bit and
+// measures the design's error against the float truth.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "cosim/metrics.hpp"
+#include "refmodel/bittrue/raycaster.hpp"
+#include "refmodel/scene/scene.hpp"
+
+namespace voxcast::cosim {
+
+struct Mismatch {
+  int x = -1, y = -1;             // first differing pixel (row-major order)
+  std::uint64_t sample = 0;       // index along its ray
+  bittrue::Unit unit = bittrue::Unit::Output;
+  std::string reproducer;         // path of the saved reproducer scene
+};
+
+struct CosimResult {
+  bool bit_exact = false;
+  Accuracy accuracy;          // hls against the float reference
+  Mismatch mismatch;          // when !bit_exact
+  std::uint64_t samples_float = 0, samples_hls = 0;
+  double seconds_float = 0, seconds_bittrue = 0, seconds_hls = 0;
+  std::vector<std::string> written;
+};
+
+// Writes DIR/report.json, DIR/layers.exr (float, hls and difference layers)
+// and DIR/{float,hls,bittrue,diff}.png.
+CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir);
+
+void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r);
+
+}  // namespace voxcast::cosim

@@ -1,0 +1,183 @@
+// The hls engine on the host: loads the frame state from the shared set-up,
+// runs the synthesizable kernels (hls/vizard2_top.hpp) over row ranges on the
+// machine's cores, and traces single rays for mismatch reports.
+#include <memory>
+#include <type_traits>
+
+#include "cosim/engines.hpp"
+#include "hls/vizard2_top.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/parallel.hpp"
+#include "refmodel/precision/preset_profiles.hpp"
+
+namespace voxcast::cosim {
+namespace {
+
+// The profiles the hls engine is compiled for: the presets. A profile is a
+// template parameter of every kernel (as a synthesized design fixes its
+// widths), so each one here is one instantiation of the whole pipeline.
+template <PrecisionProfile... Ps>
+struct ProfileList {};
+using CompiledProfiles = ProfileList<kVizard2, kBalanced, kPrecise>;
+constexpr const char* kCompiledNames = "the presets vizard2, balanced, precise";
+
+hls::FrameMode frame_mode(ref::RenderMode m) {
+  switch (m) {
+    case ref::RenderMode::Shaded: return hls::FrameMode::Shaded;
+    case ref::RenderMode::Unshaded: return hls::FrameMode::Unshaded;
+    case ref::RenderMode::Mip: return hls::FrameMode::Mip;
+  }
+  return hls::FrameMode::Shaded;
+}
+
+// The frame state is megabytes for the wide profiles (tables): on the heap.
+template <PrecisionProfile P>
+std::unique_ptr<hls::FrameState<P>> load_frame(const bittrue::FrameSetup& fs) {
+  auto f = std::make_unique<hls::FrameState<P>>();
+  f->geometry = hls::host::load_geometry_registers<P>(fs.regs);
+  if (fs.regs.perspective) hls::host::load_rsqrt_rom<P>(fs.rsqrt_seed, f->rsqrt);
+  if (!hls::host::load_class_table<P>(f->class_table, fs.class_table))
+    throw Error("hls engine: classification table size does not match the profile");
+  f->reflectance_regs = hls::host::reflectance_registers<P>(fs.regs);
+  if (fs.regs.mode == ref::RenderMode::Shaded &&
+      !hls::host::load_reflectance_map<P>(f->reflectance, fs.rm_diffuse, fs.rm_specular))
+    throw Error("hls engine: reflectance map size does not match the profile");
+  f->compositor = hls::host::compositor_registers<P>(fs.regs);
+  f->mode = frame_mode(fs.regs.mode);
+  return f;
+}
+
+template <PrecisionProfile P>
+std::array<std::uint32_t, 4> to_array(const hls::OutputPixel<P>& px) {
+  return {static_cast<std::uint32_t>(px.ch[0].to_uint64()),
+          static_cast<std::uint32_t>(px.ch[1].to_uint64()),
+          static_cast<std::uint32_t>(px.ch[2].to_uint64()),
+          static_cast<std::uint32_t>(px.ch[3].to_uint64())};
+}
+
+template <PrecisionProfile P>
+ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
+                       int threads, ref::FrameStats* stats) {
+  const auto frame = load_frame<P>(fs);
+  const hls::host::BitTrueBanks<P> banks(memory);
+  const int w = fs.regs.width, h = fs.regs.height;
+  std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  std::vector<std::uint64_t> row_samples(static_cast<std::size_t>(h), 0);
+  ref::parallel_for(
+      h,
+      [&](int y) {
+        hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(),
+                            &row_samples[static_cast<std::size_t>(y)]);
+      },
+      threads);
+  ref::QuantImage img(w, h, P.out_bits);
+  for (std::size_t i = 0; i < fb.size(); ++i) img.pixels[i] = to_array<P>(fb[i]);
+  if (stats) {
+    *stats = ref::FrameStats{};
+    stats->rays = fb.size();
+    for (std::uint64_t n : row_samples) stats->samples += n;
+  }
+  return img;
+}
+
+// Records every unit's output as doubles, in bittrue::RayTrace's layout, so a
+// trace compares field by field with the bit-true engine's.
+template <PrecisionProfile P>
+struct Recorder {
+  bittrue::RayTrace& out;
+
+  void ray(const hls::RaySetup<P>& r) {
+    out.hit = r.hit;
+    out.samples = r.hit ? r.n.to_uint64() : 0;
+    for (int a = 0; a < 3; ++a) {
+      out.p0[static_cast<std::size_t>(a)] = r.hit ? r.p0[a].to_double() : 0.0;
+      out.step[static_cast<std::size_t>(a)] = r.hit ? r.s[a].to_double() : 0.0;
+    }
+  }
+  template <class Pos>
+  bittrue::SampleTrace base(const Pos& p, const hls::Sample<P>& s) {
+    bittrue::SampleTrace t;
+    for (std::size_t a = 0; a < 3; ++a) {
+      t.position[a] = p[a].to_double();
+      t.gradient[a] = s.g[a].to_double();
+    }
+    t.value = s.value.to_double();
+    return t;
+  }
+  // MIP sample.
+  template <class Pos, class M>
+  void sample(const Pos& p, const hls::Sample<P>& s, const M& peak) {
+    bittrue::SampleTrace t = base(p, s);
+    t.accumulator[0] = peak.to_double();
+    out.trace.push_back(t);
+  }
+  // Compositing sample.
+  template <class Pos>
+  void sample(const Pos& p, const hls::Sample<P>& s, const hls::ClassEntry<P>& e,
+              const hls::Reflect<P>& r, const hls::ShadedColor<P>& c,
+              const hls::Accumulator<P>& acc) {
+    bittrue::SampleTrace t = base(p, s);
+    t.class_address = static_cast<int>(hls::class_address<P>(s.value).to_uint64());
+    t.alpha = e.alpha.to_double();
+    if (e.alpha != 0) {
+      t.diffuse = r.D.to_double();
+      t.specular = r.S.to_double();
+      for (std::size_t k = 0; k < 3; ++k) t.shaded[k] = c.c[k].to_double();
+    }
+    t.accumulator = {acc.C[0].to_double(), acc.C[1].to_double(), acc.C[2].to_double(),
+                     acc.A.to_double()};
+    out.trace.push_back(t);
+  }
+};
+
+template <PrecisionProfile P>
+bittrue::RayTrace trace(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory, int px,
+                        int py) {
+  const auto frame = load_frame<P>(fs);
+  const hls::host::BitTrueBanks<P> banks(memory);
+  bittrue::RayTrace t;
+  Recorder<P> rec{t};
+  std::uint64_t n = 0;
+  t.out = to_array<P>(hls::cast_ray<P>(*frame, banks, px, py, n, rec));
+  return t;
+}
+
+// Calls fn.template operator()<P>() for the compiled profile equal to `p`.
+template <class Fn, PrecisionProfile... Ps>
+bool dispatch(const PrecisionProfile& p, Fn&& fn, ProfileList<Ps...>) {
+  return ((p == Ps ? (fn.template operator()<Ps>(), true) : false) || ...);
+}
+
+template <class Fn>
+void with_profile(const PrecisionProfile& p, Fn&& fn) {
+  if (!dispatch(p, fn, CompiledProfiles{}))
+    throw Error(std::string("this precision profile is not compiled into the hls engine (") +
+                kCompiledNames + ")");
+}
+
+}  // namespace
+
+bool hls_supports(const PrecisionProfile& p) {
+  return dispatch(p, []<PrecisionProfile>() {}, CompiledProfiles{});
+}
+
+std::string hls_supported_profiles() { return kCompiledNames; }
+
+ref::QuantImage hls_render_image(const bittrue::FrameSetup& setup,
+                                 const bittrue::VoxelMemory& memory, int threads,
+                                 ref::FrameStats* stats) {
+  ref::QuantImage img;
+  with_profile(setup.profile, [&]<PrecisionProfile P>() {
+    img = render<P>(setup, memory, threads, stats);
+  });
+  return img;
+}
+
+bittrue::RayTrace hls_trace_ray(const bittrue::FrameSetup& setup,
+                                const bittrue::VoxelMemory& memory, int px, int py) {
+  bittrue::RayTrace t;
+  with_profile(setup.profile, [&]<PrecisionProfile P>() { t = trace<P>(setup, memory, px, py); });
+  return t;
+}
+
+}  // namespace voxcast::cosim

@@ -1,0 +1,199 @@
+// Classification unit: the look-up table from an interpolated sample value to
+// (r, g, b, alpha, ka, kd, ks), VIZARD II section 2.1 ("classification ... two
+// 32 bit SRAMs"); the datapath is docs/pipeline.md §4, its float twin
+// ref::TransferFunction::classify + ref::opacity_correct.
+//
+// Layout of this header:
+//   1. ClassificationParams<P>: every width and type of the unit, derived from P.
+//   2. The synthesizable unit: ClassEntry<P>, ClassificationTable<P>,
+//      class_address() (§4.1), classify(), and the vizard2 SRAM word layout
+//      pack_vizard2_words() / unpack_vizard2_words() (§4.3).
+//   3. host:: — loading the table from the raw integers the driver computes
+//      (bittrue::make_class_table, §4.2). Not synthesized.
+#pragma once
+
+#include <cstdint>
+
+#include "hls/types.hpp"
+#include "refmodel/precision/profile.hpp"
+
+#ifndef __SYNTHESIS__
+#include <vector>
+
+#include "refmodel/bittrue/frame_setup.hpp"
+#endif
+
+// Vendor pragmas are emitted only for the synthesis tool (g++ -Wall would warn
+// about an unknown #pragma).
+#ifndef VOXCAST_HLS_PRAGMA
+#if defined(__SYNTHESIS__)
+#define VOXCAST_HLS_PRAGMA(x) _Pragma(#x)
+#else
+#define VOXCAST_HLS_PRAGMA(x)
+#endif
+#endif
+
+namespace voxcast::hls {
+
+// ---- 1. Parameters ------------------------------------------------------------------------
+template <PrecisionProfile P>
+struct ClassificationParams {
+  static constexpr int value_bits = P.value_bits;              // vb
+  static constexpr int sample_frac_bits = P.sample_frac_bits;  // sf
+  static constexpr int addr_bits = P.tf_addr_bits;
+  static constexpr int entries = 1 << addr_bits;
+  static constexpr int color_bits = P.color_bits;
+  static constexpr int alpha_bits = P.alpha_bits;
+  static constexpr int k_bits = P.k_bits;
+  // Payload bits of one entry (the vizard2 SRAM words add 8 reserved bits, §4.3).
+  static constexpr int entry_bits = 3 * color_bits + alpha_bits + 3 * k_bits;
+
+  // The interpolated sample value, vb.sf unsigned (§3.5). A narrower fixed type
+  // converts into it exactly.
+  using value_t = ufixed<value_bits + sample_frac_bits, value_bits>;
+  // §4.1: the same bits read with the binary point moved: value · 2^(addr_bits - vb).
+  using scaled_value_t = ufixed<value_bits + sample_frac_bits, addr_bits>;
+  // §4.1: SAT(Q_RND(·, 0), 0, 2^addr_bits - 1) is one conversion into this type.
+  using addr_round_t = ufixed<addr_bits, addr_bits, RND, SAT>;
+  using addr_t = uint_t<addr_bits>;
+
+  // §4.2 fields: unsigned fractions of 1.
+  using color_t = ufixed<color_bits, 0>;
+  using alpha_t = ufixed<alpha_bits, 0>;
+  using k_t = ufixed<k_bits, 0>;
+
+  static_assert(addr_bits >= 1 && addr_bits <= 20, "tf_addr_bits out of range");
+  static_assert(value_bits + sample_frac_bits <= 64, "sample value wider than 64 bits");
+};
+
+// ---- 2. The unit ----------------------------------------------------------------------------
+
+// One table entry (§4.2).
+template <PrecisionProfile P>
+struct ClassEntry {
+  using Params = ClassificationParams<P>;
+  typename Params::color_t r, g, b;
+  typename Params::alpha_t alpha;  // opacity-corrected for the frame's step
+  typename Params::k_t ka, kd, ks;
+};
+
+// The table: 2^tf_addr_bits entries, one per address, in one SRAM (read-only for
+// the datapath; written by the host between frames). The top-level kernel packs
+// an entry into one word and binds the array to a single-port RAM
+// (`#pragma HLS AGGREGATE variable=<table>.entry compact=bit` and
+// `#pragma HLS BIND_STORAGE variable=<table>.entry type=ram_1p impl=bram`):
+// one read per sample, as the paper's two 32-bit SRAMs read in parallel.
+template <PrecisionProfile P>
+struct ClassificationTable {
+  ClassEntry<P> entry[ClassificationParams<P>::entries];
+};
+
+// §4.1: addr = SAT(Q_RND(value · 2^(tf_addr_bits - vb), 0), 0, 2^tf_addr_bits - 1).
+template <PrecisionProfile P>
+typename ClassificationParams<P>::addr_t class_address(
+    const typename ClassificationParams<P>::value_t& value) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  using Params = ClassificationParams<P>;
+  // Re-reading the bits with the binary point moved is wiring, not arithmetic.
+  typename Params::scaled_value_t scaled;
+  scaled.range() = value.range().to_uint64();
+  const typename Params::addr_round_t rounded = scaled;  // one rounding, one clamp
+  return typename Params::addr_t(rounded);               // integer-valued: exact
+}
+
+// §4: one table read per sample.
+template <PrecisionProfile P>
+ClassEntry<P> classify(const ClassificationTable<P>& table,
+                       const typename ClassificationParams<P>::value_t& value) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  return table.entry[class_address<P>(value).to_uint()];
+}
+
+// §4.3: the vizard2 entry as two 32-bit SRAM words, each field its raw unsigned integer:
+//   word[0] bits [31:24] r, [23:16] g, [15:8] b, [7:0] alpha
+//   word[1] bits [31:24] ka, [23:16] kd, [15:8] ks, [7:0] reserved, written 0
+// 256 entries x 8 bytes = 2 KB, VIZARD II's table size.
+struct Vizard2Words {
+  uint_t<32> word[2];
+};
+
+template <PrecisionProfile P>
+concept Vizard2Layout = P.color_bits == 8 && P.alpha_bits == 8 && P.k_bits == 8;
+
+template <PrecisionProfile P>
+requires Vizard2Layout<P> Vizard2Words pack_vizard2_words(const ClassEntry<P>& e) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  Vizard2Words w;
+  w.word[0] = 0;
+  w.word[1] = 0;
+  w.word[0].range(31, 24) = e.r.range().to_uint64();
+  w.word[0].range(23, 16) = e.g.range().to_uint64();
+  w.word[0].range(15, 8) = e.b.range().to_uint64();
+  w.word[0].range(7, 0) = e.alpha.range().to_uint64();
+  w.word[1].range(31, 24) = e.ka.range().to_uint64();
+  w.word[1].range(23, 16) = e.kd.range().to_uint64();
+  w.word[1].range(15, 8) = e.ks.range().to_uint64();
+  return w;
+}
+
+// The inverse; the reserved bits [7:0] of word[1] are ignored.
+template <PrecisionProfile P>
+requires Vizard2Layout<P> ClassEntry<P> unpack_vizard2_words(const Vizard2Words& w) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  ClassEntry<P> e;
+  e.r.range() = w.word[0].range(31, 24).to_uint64();
+  e.g.range() = w.word[0].range(23, 16).to_uint64();
+  e.b.range() = w.word[0].range(15, 8).to_uint64();
+  e.alpha.range() = w.word[0].range(7, 0).to_uint64();
+  e.ka.range() = w.word[1].range(31, 24).to_uint64();
+  e.kd.range() = w.word[1].range(23, 16).to_uint64();
+  e.ks.range() = w.word[1].range(15, 8).to_uint64();
+  return e;
+}
+
+// ---- 3. Host side (not synthesized) -------------------------------------------------------
+#ifndef __SYNTHESIS__
+namespace host {
+
+// One entry from the driver's raw integers (§4.2), and back.
+template <PrecisionProfile P>
+ClassEntry<P> entry_from_raw(const bittrue::ClassEntry& raw) {
+  ClassEntry<P> e;
+  e.r.range() = std::uint64_t{raw.r};
+  e.g.range() = std::uint64_t{raw.g};
+  e.b.range() = std::uint64_t{raw.b};
+  e.alpha.range() = std::uint64_t{raw.alpha};
+  e.ka.range() = std::uint64_t{raw.ka};
+  e.kd.range() = std::uint64_t{raw.kd};
+  e.ks.range() = std::uint64_t{raw.ks};
+  return e;
+}
+
+template <PrecisionProfile P>
+bittrue::ClassEntry entry_to_raw(const ClassEntry<P>& e) {
+  bittrue::ClassEntry raw;
+  raw.r = e.r.range().to_uint();
+  raw.g = e.g.range().to_uint();
+  raw.b = e.b.range().to_uint();
+  raw.alpha = e.alpha.range().to_uint();
+  raw.ka = e.ka.range().to_uint();
+  raw.kd = e.kd.range().to_uint();
+  raw.ks = e.ks.range().to_uint();
+  return raw;
+}
+
+// Loads the whole table (2^tf_addr_bits raw entries, bittrue::make_class_table).
+// Returns false (and leaves the table unchanged) if the size does not match.
+template <PrecisionProfile P>
+bool load_class_table(ClassificationTable<P>& table, const std::vector<bittrue::ClassEntry>& raw) {
+  constexpr int n = ClassificationParams<P>::entries;
+  if (raw.size() != static_cast<std::size_t>(n)) return false;
+  [[maybe_unused]] load_class_entries : for (int i = 0; i < n; ++i) {
+    table.entry[i] = entry_from_raw<P>(raw[static_cast<std::size_t>(i)]);
+  }
+  return true;
+}
+
+}  // namespace host
+#endif
+}  // namespace voxcast::hls

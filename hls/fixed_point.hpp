@@ -1,0 +1,1473 @@
+// voxcast::hls fixed-point and arbitrary-width integer types: a bit-exact clone of the C
+// simulation behaviour of AMD's ap_fixed / ap_ufixed / ap_int / ap_uint.
+//
+// The authoritative specification is /work/shared/fixed-point-semantics.md ("semantics" below,
+// cited by section); docs/fixed-point.md describes the mapping, the supported subset and the
+// places where the clone deliberately differs from ap's simulation bugs. Kernels include
+// hls/types.hpp, which selects either this header or the vendor headers.
+//
+// Representation: a fixed_base<W, I, S, Q, O, N> stores its W-bit pattern V in one int64/uint64
+// (W <= 64) or __int128/unsigned __int128 (W <= 128), always in canonical form (sign-extended
+// for signed, zero-extended for unsigned), so that raw() is the mathematical integer V and the
+// value is V * 2^-(W-I). Quantization and overflow are integer shifts and masks chosen at compile
+// time; nothing loops over bits and nothing goes through double except the conversions to and
+// from double themselves.
+//
+// Limits: 1 <= W <= 128 for every type, including the result types of the binary operators
+// (a 64 x 64-bit product is 128 bits; a 128-bit operand can only take part in operations whose
+// result stays within 128 bits). No heap, no exceptions, no virtual functions.
+#pragma once
+
+#include <bit>
+#include <charconv>
+#include <concepts>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace voxcast::hls {
+
+// Semantics section 1: same enumerators, same order as ap_q_mode / ap_o_mode.
+enum q_mode { RND, RND_ZERO, RND_MIN_INF, RND_INF, RND_CONV, TRN, TRN_ZERO };
+enum o_mode { SAT, SAT_ZERO, SAT_SYM, WRAP, WRAP_SM };
+
+// The widest type (stored or produced by an operator) the clone represents: one __int128.
+inline constexpr int max_width = 128;
+
+template <int W, int I, bool S, q_mode Q = TRN, o_mode O = WRAP, int N = 0>
+class fixed_base;
+template <int W, bool S>
+class int_base;
+
+// ap_fixed<W, I, Q, O, N> / ap_ufixed<...> / ap_int<W> / ap_uint<W>.
+template <int W, int I, q_mode Q = TRN, o_mode O = WRAP, int N = 0>
+using fixed = fixed_base<W, I, true, Q, O, N>;
+template <int W, int I, q_mode Q = TRN, o_mode O = WRAP, int N = 0>
+using ufixed = fixed_base<W, I, false, Q, O, N>;
+template <int W>
+using int_t = int_base<W, true>;
+template <int W>
+using uint_t = int_base<W, false>;
+
+namespace detail {
+
+__extension__ typedef __int128 i128;
+__extension__ typedef unsigned __int128 u128;
+
+constexpr int imax(int a, int b) { return a > b ? a : b; }
+constexpr int imin(int a, int b) { return a < b ? a : b; }
+
+// Working words: unsigned, arithmetic modulo 2^B, reinterpreted as signed where needed.
+template <int W>
+using word_t = std::conditional_t<(W <= 64), std::uint64_t, u128>;
+template <class U>
+using sword_t = std::conditional_t<(sizeof(U) == 8), std::int64_t, i128>;
+template <class U>
+inline constexpr int word_bits = static_cast<int>(sizeof(U) * 8);
+template <int W, bool S>
+using raw_t = std::conditional_t<(W <= 64), std::conditional_t<S, std::int64_t, std::uint64_t>,
+                                 std::conditional_t<S, i128, u128>>;
+
+// Mask of the low n bits (n <= 0 gives 0, n >= word size gives all ones).
+template <class U>
+constexpr U low_mask(int n) noexcept {
+  if (n <= 0) return U(0);
+  if (n >= word_bits<U>) return ~U(0);
+  return (U(1) << n) - U(1);
+}
+
+// Bit k of the infinite two's-complement extension of (bits, neg).
+template <class U>
+constexpr bool bit_of(U bits, bool neg, int k) noexcept {
+  if (k < 0) return false;
+  if (k >= word_bits<U>) return neg;
+  return ((bits >> k) & U(1)) != 0;
+}
+
+// Canonical form: the low W bits sign-extended (S) or zero-extended (!S) to the whole word.
+template <int W, bool S, class U>
+constexpr U extend(U x) noexcept {
+  constexpr int B = word_bits<U>;
+  if constexpr (W >= B) {
+    return x;
+  } else if constexpr (S) {
+    return static_cast<U>(static_cast<sword_t<U>>(x << (B - W)) >> (B - W));
+  } else {
+    return x & low_mask<U>(W);
+  }
+}
+
+// A value as a word plus its sign: value = neg ? bits - 2^B : bits. A negative value always has
+// the top word bit set (it comes from a signed source of at most B bits), a non-negative one
+// may use all B bits (an unsigned source of B bits): together they cover B+1-bit integers.
+template <class U>
+struct wide {
+  U bits;
+  bool neg;
+};
+
+template <class U, bool S, class R>
+constexpr wide<U> widen(R raw) noexcept {
+  const U bits = static_cast<U>(raw);  // sign-extends signed raws, zero-extends unsigned ones
+  if constexpr (S) {
+    return {bits, static_cast<sword_t<U>>(bits) < 0};
+  } else {
+    return {bits, false};
+  }
+}
+
+// Sets bits [lo, hi] of x to 1 (set) or 0 (!set).
+template <class U>
+constexpr U assign_bits(U x, int lo, int hi, bool set) noexcept {
+  if (hi < lo) return x;
+  const U m = low_mask<U>(hi - lo + 1) << lo;
+  return set ? (x | m) : (x & ~m);
+}
+
+// Semantics sections 2 and 3: converting the exact value (bits, neg) * 2^-fs into the W-bit
+// pattern of fixed_base<Wt, It, St, Q, O, N> is one quantization (from the unrounded source's
+// floor, first dropped bit, sticky bit and sign) followed by one overflow step on the rounded
+// value. The steps are separate functions so that a conversion whose shift is known at compile
+// time instantiates only the branch it needs; the double conversion dispatches at run time.
+
+// The rounded value in target LSB units: its low word bits t, its sign, whether it lies above
+// MAX or below MIN, and (WRAP_SM, N = 0) bit Wt of the aligned unrounded source.
+template <class U>
+struct rounded {
+  U t;
+  bool neg;
+  bool ovf;
+  bool unf;
+  bool ld;
+};
+
+template <int Wt, bool St, class U>
+struct target_bounds {
+  static constexpr U max_t = St ? low_mask<U>(Wt - 1) : low_mask<U>(Wt);  // MAX in LSB units
+  static constexpr U min_t = St ? ~max_t : U(0);                           // MIN pattern
+};
+
+// Overflow flags of a rounded value that is exact in the word (t, neg).
+template <int Wt, bool St, o_mode O, int N, class U>
+constexpr void detect_range(rounded<U>& r) noexcept {
+  using SU = sword_t<U>;
+  using TB = target_bounds<Wt, St, U>;
+  if constexpr (!(O == WRAP && N == 0)) {  // section 3: plain WRAP never looks
+    if (r.neg) {
+      r.unf = !St || static_cast<SU>(r.t) < static_cast<SU>(TB::min_t);
+    } else {
+      r.ovf = r.t > TB::max_t;
+    }
+  }
+}
+
+// d >= 1 source bits drop below the target LSB: section 2.
+template <int Wt, bool St, q_mode Q, o_mode O, int N, class U>
+constexpr rounded<U> round_down(U bits, bool neg, int d) noexcept {
+  using SU = sword_t<U>;
+  constexpr int B = word_bits<U>;
+  rounded<U> r{0, neg, false, false, false};
+  bool qb = false;  // first dropped bit
+  bool rb = false;  // OR of the dropped bits below qb (sticky)
+  if (d > B) {
+    r.t = neg ? ~U(0) : U(0);
+    qb = neg;
+    rb = bits != 0;
+  } else {
+    r.t = (d == B) ? (neg ? ~U(0) : U(0))
+                   : (neg ? static_cast<U>(static_cast<SU>(bits) >> d) : bits >> d);  // floor
+    qb = ((bits >> (d - 1)) & U(1)) != 0;
+    rb = (bits & low_mask<U>(d - 1)) != 0;
+  }
+  // The table of section 2; s is the sign of the source.
+  bool inc = false;
+  if constexpr (Q == TRN) {
+    inc = false;
+  } else if constexpr (Q == TRN_ZERO) {
+    inc = neg && (qb || rb);
+  } else if constexpr (Q == RND) {
+    inc = qb;
+  } else if constexpr (Q == RND_ZERO) {
+    inc = qb && (neg || rb);
+  } else if constexpr (Q == RND_MIN_INF) {
+    inc = qb && rb;
+  } else if constexpr (Q == RND_INF) {
+    inc = qb && (!neg || rb);
+  } else {
+    static_assert(Q == RND_CONV);
+    inc = qb && ((r.t & U(1)) != 0 || rb);
+  }
+  if constexpr (O == WRAP_SM && N == 0) r.ld = bit_of<U>(r.t, neg, Wt);
+  // The carry can move -1 LSB to 0; it never leaves the word because a floor shift by d >= 1
+  // halves the magnitude.
+  r.t += static_cast<U>(inc);
+  r.neg = neg && r.t != 0;
+  detect_range<Wt, St, O, N>(r);
+  return r;
+}
+
+// Same LSB: the value is already exact.
+template <int Wt, bool St, o_mode O, int N, class U>
+constexpr rounded<U> keep(U bits, bool neg) noexcept {
+  rounded<U> r{bits, neg, false, false, false};
+  if constexpr (O == WRAP_SM && N == 0) r.ld = bit_of<U>(bits, neg, Wt);
+  detect_range<Wt, St, O, N>(r);
+  return r;
+}
+
+// e >= 1: the exact value times 2^e, no quantization. Overflow is decided on the unshifted
+// source against the bounds shifted down, so nothing wider than the word is ever formed.
+template <int Wt, bool St, o_mode O, int N, class U>
+constexpr rounded<U> shift_up(U bits, bool neg, int e) noexcept {
+  using SU = sword_t<U>;
+  using TB = target_bounds<Wt, St, U>;
+  constexpr int B = word_bits<U>;
+  rounded<U> r{e >= B ? U(0) : U(bits << e), neg, false, false, false};
+  if constexpr (!(O == WRAP && N == 0)) {
+    if (neg) {
+      r.unf = !St || e >= Wt || static_cast<SU>(bits) < (static_cast<SU>(TB::min_t) >> e);
+    } else {
+      r.ovf = bits > (e >= B ? U(0) : U(TB::max_t >> e));
+    }
+  }
+  if constexpr (O == WRAP_SM && N == 0) r.ld = bit_of<U>(bits, neg, Wt - e);
+  return r;
+}
+
+// Section 3: overflow handling on the rounded value; returns the low word bits (the caller
+// extends them to Wt bits).
+template <int Wt, bool St, o_mode O, int N, class U>
+constexpr U handle_overflow(const rounded<U>& r) noexcept {
+  using SU = sword_t<U>;
+  using TB = target_bounds<Wt, St, U>;
+  if constexpr (O == WRAP && N == 0) {
+    return r.t;
+  } else if constexpr (O == SAT) {
+    return r.ovf ? TB::max_t : (r.unf ? TB::min_t : r.t);
+  } else if constexpr (O == SAT_ZERO) {
+    return (r.ovf || r.unf) ? U(0) : r.t;
+  } else if constexpr (O == SAT_SYM) {
+    // -MAX is built as MIN | 1, as in ap (which makes W = 1 give -1 = MIN). A signed result
+    // equal to MIN becomes -MAX too, except for W = 1 where the range is {-1, 0}.
+    if (r.ovf) return TB::max_t;
+    if (r.unf) return St ? U(TB::min_t | U(1)) : U(0);
+    if constexpr (St && Wt > 1) {
+      if (r.neg && static_cast<SU>(r.t) == static_cast<SU>(TB::min_t)) return TB::min_t | U(1);
+    }
+    return r.t;
+  } else if constexpr (O == WRAP) {
+    // N > 0: saturate the top N bits. Unsigned sets them on underflow as well.
+    if (!(r.ovf || r.unf)) return r.t;
+    if constexpr (St) {
+      U v = assign_bits<U>(r.t, Wt - 1, Wt - 1, r.neg);
+      if constexpr (N > 1) v = assign_bits<U>(v, Wt - N, Wt - 2, !r.neg);
+      return v;
+    } else {
+      return assign_bits<U>(r.t, Wt - N, Wt - 1, true);
+    }
+  } else {
+    static_assert(O == WRAP_SM && St, "WRAP_SM is signed only");
+    if (!(r.ovf || r.unf)) return r.t;
+    U v = r.t;
+    const bool ro = ((v >> (Wt - 1)) & U(1)) != 0;
+    if constexpr (N == 0) {
+      if (r.ld != ro) v = assign_bits<U>(~v, Wt - 1, Wt - 1, r.ld);
+    } else if constexpr (N == 1) {
+      if (r.neg != ro) v = ~v;
+      v = assign_bits<U>(v, Wt - 1, Wt - 1, r.neg);
+    } else {
+      if ((((v >> (Wt - N)) & U(1)) != 0) == r.neg) v = ~v;
+      v = assign_bits<U>(v, Wt - N, Wt - 2, !r.neg);
+      v = assign_bits<U>(v, Wt - 1, Wt - 1, r.neg);
+    }
+    return v;
+  }
+}
+
+// Fixed and integer sources: D = source fraction bits - target fraction bits, known at
+// compile time.
+template <int Wt, bool St, q_mode Q, o_mode O, int N, int D, class U>
+constexpr U quantize(U bits, bool neg) noexcept {
+  static_assert(Wt <= word_bits<U>, "working word narrower than the target");
+  if constexpr (D > 0) {
+    return handle_overflow<Wt, St, O, N>(round_down<Wt, St, Q, O, N>(bits, neg, D));
+  } else if constexpr (D == 0) {
+    return handle_overflow<Wt, St, O, N>(keep<Wt, St, O, N>(bits, neg));
+  } else {
+    return handle_overflow<Wt, St, O, N>(shift_up<Wt, St, O, N>(bits, neg, -D));
+  }
+}
+
+// Double sources: the shift depends on the exponent.
+template <int Wt, bool St, q_mode Q, o_mode O, int N, class U>
+constexpr U quantize(U bits, bool neg, int d) noexcept {
+  if (d > 0) return handle_overflow<Wt, St, O, N>(round_down<Wt, St, Q, O, N>(bits, neg, d));
+  if (d == 0) return handle_overflow<Wt, St, O, N>(keep<Wt, St, O, N>(bits, neg));
+  return handle_overflow<Wt, St, O, N>(shift_up<Wt, St, O, N>(bits, neg, -d));
+}
+
+// Exact decode of a double (section 9): value = (neg ? -m : m) * 2^-fs with m < 2^53.
+// NaN and infinities decode as +-1.mant * 2^1024, which is what makes them saturate / wrap to 0.
+struct double_parts {
+  std::int64_t m;  // signed mantissa
+  int fs;          // fraction bits: value = m * 2^-fs
+};
+constexpr double_parts decode(double x) noexcept {
+  const auto b = std::bit_cast<std::uint64_t>(x);
+  const bool sign = (b >> 63) != 0;
+  const int ex = static_cast<int>((b >> 52) & 0x7ffU);
+  std::uint64_t mant = b & ((std::uint64_t{1} << 52) - 1);
+  int e = -1074;  // denormals and zero
+  if (ex != 0) {
+    mant |= std::uint64_t{1} << 52;
+    e = ex - 1075;
+  }
+  const auto m = static_cast<std::int64_t>(mant);
+  return {sign ? -m : m, -e};
+}
+
+// x * 2^E for a compile-time E, exact whenever the result is a normal double.
+constexpr double pow2(int e) noexcept {
+  double r = 1.0;
+  for (; e > 0; --e) r *= 2.0;
+  for (; e < 0; ++e) r *= 0.5;
+  return r;
+}
+template <int E>
+constexpr double scale(double x) noexcept {
+  if constexpr (E >= -1022 && E <= 1023) {
+    constexpr double s = pow2(E);
+    return x * s;
+  } else {
+    // Outside the normal exponent range (ap returns garbage here, section 9): two exact steps,
+    // so the result only rounds (a second time) if it is subnormal.
+    constexpr int e1 = E / 2;
+    constexpr double s1 = pow2(e1);
+    constexpr double s2 = pow2(E - e1);
+    return (x * s1) * s2;
+  }
+}
+
+// Section 9: the integer toward zero of raw * 2^-F, as the low bits of word U (wrapping).
+template <class U, int F, bool S, class R>
+constexpr U trunc_toward_zero(R raw) noexcept {
+  using RU = word_t<(sizeof(R) > 8 ? 128 : 64)>;
+  using RS = sword_t<RU>;
+  if constexpr (F <= 0) {
+    if constexpr (-F >= word_bits<U>) {
+      return U(0);
+    } else {
+      return static_cast<U>(static_cast<U>(raw) << -F);
+    }
+  } else if constexpr (F >= word_bits<RU>) {
+    return U(0);  // |value| < 1: a negative value floors to -1 and the carry brings it to 0
+  } else {
+    const RU bits = static_cast<RU>(raw);
+    if constexpr (S) {
+      const RS v = static_cast<RS>(bits);
+      RS q = v >> F;                                         // floor
+      if (v < 0 && (bits & low_mask<RU>(F)) != 0) q += 1;  // C rounds toward zero
+      return static_cast<U>(q);
+    } else {
+      return static_cast<U>(bits >> F);
+    }
+  }
+}
+
+// ---- Operand traits: every operand of a binary operator is viewed as <w, i, s> --------------
+// Section 5: C integers are ap_[u]fixed<w, w> with w = 1/8/16/32/64; ap_[u]int<W> is <W, W>.
+template <class T>
+struct operand {
+  static constexpr bool valid = false;
+};
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+struct operand<fixed_base<W, I, S, Q, O, N>> {
+  static constexpr bool valid = true, is_ap = true, is_fixed = true, s = S;
+  static constexpr int w = W, i = I;
+  static constexpr auto raw(const fixed_base<W, I, S, Q, O, N>& x) noexcept { return x.raw(); }
+};
+template <int W, bool S>
+struct operand<int_base<W, S>> {
+  static constexpr bool valid = true, is_ap = true, is_fixed = false, s = S;
+  static constexpr int w = W, i = W;
+  static constexpr auto raw(const int_base<W, S>& x) noexcept { return x.raw(); }
+};
+template <std::integral T>
+struct operand<T> {
+  static constexpr bool valid = true, is_ap = false, is_fixed = false;
+  static constexpr bool s = std::is_signed_v<T>;
+  static constexpr int w = std::is_same_v<T, bool> ? 1 : static_cast<int>(sizeof(T) * 8);
+  static constexpr int i = w;
+  static constexpr T raw(T x) noexcept { return x; }
+};
+
+template <class T>
+concept ap_type = operand<std::remove_cvref_t<T>>::valid && operand<std::remove_cvref_t<T>>::is_ap;
+template <class T>
+concept fixed_type = ap_type<T> && operand<std::remove_cvref_t<T>>::is_fixed;
+template <class T>
+concept int_type = ap_type<T> && !operand<std::remove_cvref_t<T>>::is_fixed;
+// A binary operator applies when both operands are fixed/int/C-integer and one is ours:
+// a double operand never matches, so "a + 0.5" is ill-formed as with ap (section 5).
+template <class A, class B>
+concept operands = operand<std::remove_cvref_t<A>>::valid &&
+                   operand<std::remove_cvref_t<B>>::valid && (ap_type<A> || ap_type<B>);
+
+// Section 5: result types. Integer-only expressions give ap_[u]int (section 12), anything with
+// a fixed operand gives ap_[u]fixed with default Q/O.
+template <class A, class B>
+struct rtype {
+  using TA = operand<std::remove_cvref_t<A>>;
+  using TB = operand<std::remove_cvref_t<B>>;
+  static constexpr int w1 = TA::w, i1 = TA::i, f1 = w1 - i1;
+  static constexpr int w2 = TB::w, i2 = TB::i, f2 = w2 - i2;
+  static constexpr bool s1 = TA::s, s2 = TB::s;
+  // An unsigned operand mixed with a signed one gets one extra integer bit.
+  static constexpr int ia = i1 + ((s2 && !s1) ? 1 : 0), ib = i2 + ((s1 && !s2) ? 1 : 0);
+  static constexpr int fm = imax(f1, f2), im = imax(ia, ib);
+  static constexpr bool any_fixed = TA::is_fixed || TB::is_fixed;
+  template <int W, int I, bool S>
+  using make = std::conditional_t<any_fixed, fixed_base<W, I, S>, int_base<W, S>>;
+
+  using plus = make<im + 1 + fm, im + 1, s1 || s2>;
+  using minus = make<im + 1 + fm, im + 1, true>;  // ufixed - ufixed is signed
+  using mult = make<w1 + w2, i1 + i2, s1 || s2>;
+  using div = make<w1 + imax(f2, 0) + (s2 ? 1 : 0), i1 + f2 + (s2 ? 1 : 0), s1 || s2>;
+  using logic = make<im + fm, im, s1 || s2>;
+  // Section 12: ap_int % keeps the dividend's sign.
+  using mod = int_base<imin(w1, w2 + ((!s2 && s1) ? 1 : 0)), s1>;
+};
+
+template <class T>
+constexpr auto raw_of(const T& x) noexcept {
+  return operand<std::remove_cvref_t<T>>::raw(x);
+}
+
+// The operand's pattern, sign/zero-extended to word U and moved up by Shift bits.
+template <class U, int Shift, class T>
+constexpr U aligned(const T& x) noexcept {
+  if constexpr (Shift >= word_bits<U>) {
+    return U(0);
+  } else {
+    return static_cast<U>(static_cast<U>(raw_of(x)) << Shift);
+  }
+}
+
+template <class R, class U>
+constexpr R make_exact(U pattern) noexcept {
+  return R::from_raw(static_cast<typename R::raw_type>(pattern));
+}
+
+// Sections 4-6: the binary operators are exact in their widened result type (division
+// truncates toward zero); no quantization or overflow handling happens here.
+enum class op { add, sub, mul, div, band, bor, bxor, mod };
+
+template <op Op, class A, class B>
+constexpr auto binary(const A& a, const B& b) noexcept {
+  using RT = rtype<A, B>;
+  if constexpr (Op == op::add || Op == op::sub) {
+    using R = std::conditional_t<Op == op::add, typename RT::plus, typename RT::minus>;
+    using U = word_t<R::width>;
+    const U x = aligned<U, RT::fm - RT::f1>(a);
+    const U y = aligned<U, RT::fm - RT::f2>(b);
+    return make_exact<R>(Op == op::add ? U(x + y) : U(x - y));
+  } else if constexpr (Op == op::mul) {
+    using R = typename RT::mult;
+    using U = word_t<R::width>;
+    return make_exact<R>(U(static_cast<U>(raw_of(a)) * static_cast<U>(raw_of(b))));
+  } else if constexpr (Op == op::band || Op == op::bor || Op == op::bxor) {
+    using R = typename RT::logic;
+    using U = word_t<R::width>;
+    const U x = aligned<U, RT::fm - RT::f1>(a);
+    const U y = aligned<U, RT::fm - RT::f2>(b);
+    const U z = Op == op::band ? U(x & y) : (Op == op::bor ? U(x | y) : U(x ^ y));
+    return R::from_raw(static_cast<typename R::raw_type>(extend<R::width, R::is_signed>(z)));
+  } else {
+    // Section 6: (a.V << max(F2, 0)) / b.V, C integer division (toward zero). Computed on
+    // magnitudes, so MIN / -1 LSB gives the mathematically correct value (ap sim wraps).
+    using R = std::conditional_t<Op == op::div, typename RT::div, typename RT::mod>;
+    using U = word_t<imax(imax(RT::w1, RT::w2), R::width) + 1>;
+    constexpr int sh = Op == op::div ? imax(RT::f2, 0) : 0;
+    const wide<U> n = widen<U, RT::s1>(raw_of(a));
+    const wide<U> dv = widen<U, RT::s2>(raw_of(b));
+    const U nm = (n.neg ? U(U(0) - n.bits) : n.bits) << sh;
+    const U dm = dv.neg ? U(U(0) - dv.bits) : dv.bits;
+    if constexpr (Op == op::div) {
+      const U q = nm / dm;
+      return make_exact<R>((n.neg != dv.neg) ? U(U(0) - q) : q);
+    } else {
+      const U rm = nm % dm;
+      return R::from_raw(static_cast<typename R::raw_type>(
+          extend<R::width, R::is_signed>(n.neg ? U(U(0) - rm) : rm)));
+    }
+  }
+}
+
+// ---- Comparisons (section 8) ----------------------------------------------------------------
+
+// Compares floor(x / 2^d) (and the dropped remainder) with y; x and y have the same sign.
+template <class U>
+constexpr int cmp_shifted(wide<U> x, int d, wide<U> y) noexcept {
+  using SU = sword_t<U>;
+  U fx = x.bits;
+  bool rem = false;
+  if (d >= word_bits<U>) {
+    fx = x.neg ? ~U(0) : U(0);
+    rem = x.bits != 0;
+  } else if (d > 0) {
+    fx = x.neg ? static_cast<U>(static_cast<SU>(x.bits) >> d) : x.bits >> d;
+    rem = (x.bits & low_mask<U>(d)) != 0;
+  }
+  if (fx != y.bits) {
+    const bool less = x.neg ? static_cast<SU>(fx) < static_cast<SU>(y.bits) : fx < y.bits;
+    return less ? -1 : 1;
+  }
+  return rem ? 1 : 0;
+}
+
+// Exact three-way comparison of x * 2^-fx and y * 2^-fy.
+template <class U>
+constexpr int cmp_exact(wide<U> x, int fx, wide<U> y, int fy) noexcept {
+  if (x.neg != y.neg) return x.neg ? -1 : 1;
+  return fx >= fy ? cmp_shifted(x, fx - fy, y) : -cmp_shifted(y, fy - fx, x);
+}
+
+template <class A, class B>
+struct cmp_rule {
+  using RT = rtype<A, B>;
+  // Section 8: the operand with fewer fraction bits is widened; the left one gets an extra bit.
+  static constexpr int wa = RT::f1 < RT::f2 ? RT::w1 + RT::f2 - RT::f1 + 1 : RT::w1;
+  static constexpr int wb = RT::f1 > RT::f2 ? RT::w2 + RT::f1 - RT::f2 : RT::w2;
+  static constexpr bool mixed = RT::s1 != RT::s2;
+  static constexpr int ws = RT::s1 ? wa : wb;
+  static constexpr int wu = RT::s1 ? wb : wa;
+  // < <= > >=: C's usual arithmetic conversions make the comparison unsigned.
+  static constexpr bool rel_unsigned = mixed && !(ws < 32 && wu < 32) && wu >= ws;
+  // == !=: the signed operand is compared modulo 2^wu.
+  static constexpr bool eq_modular = mixed && wu >= 32 && (wu > ws || (wu == ws && wu >= 64));
+  using U = word_t<imax(RT::w1, RT::w2)>;
+};
+
+template <class A, class B>
+constexpr int compare(const A& a, const B& b) noexcept {
+  using C = cmp_rule<A, B>;
+  using U = typename C::U;
+  const wide<U> x = widen<U, C::RT::s1>(raw_of(a));
+  const wide<U> y = widen<U, C::RT::s2>(raw_of(b));
+  if constexpr (C::rel_unsigned) {
+    // Converted to unsigned, a negative signed operand exceeds every unsigned value.
+    if (x.neg) return 1;
+    if (y.neg) return -1;
+  }
+  return cmp_exact(x, C::RT::f1, y, C::RT::f2);
+}
+
+// (s mod 2^wu) == u on the aligned patterns, for a negative signed s (section 8).
+template <int Ws, int Fs, int Wu, int Fu, int WuAligned>
+constexpr bool modular_equal(i128 s, u128 u) noexcept {
+  constexpr int f = imax(Fs, Fu);
+  constexpr int ds = f - Fs;  // the signed pattern moves up by ds (u fixed), or
+  constexpr int du = f - Fu;  // the unsigned one moves up by du (s fixed)
+  const auto sp = static_cast<u128>(s);
+  if constexpr (du == 0) {
+    if constexpr (ds >= WuAligned) {
+      return u == 0;
+    } else {
+      constexpr int k = WuAligned - ds;
+      return (u & low_mask<u128>(ds)) == 0 && (u >> ds) == (sp & low_mask<u128>(k));
+    }
+  } else {
+    constexpr int k = WuAligned - du;
+    if constexpr (du >= 128) {
+      return false;  // a negative s has a non-zero bit below 2^128
+    } else {
+      if ((sp & low_mask<u128>(du)) != 0) return false;
+      const auto hi = static_cast<u128>(s >> du);
+      if constexpr (k > 128) {
+        return false;  // bit 128 of a negative pattern is 1, u has only 128 bits
+      } else {
+        return (hi & low_mask<u128>(k)) == u;
+      }
+    }
+  }
+}
+
+template <class A, class B>
+constexpr bool equal(const A& a, const B& b) noexcept {
+  using C = cmp_rule<A, B>;
+  using RT = typename C::RT;
+  if constexpr (C::eq_modular) {
+    const auto ra = raw_of(a);
+    const auto rb = raw_of(b);
+    if constexpr (RT::s1) {
+      if (static_cast<i128>(ra) < 0) {
+        return modular_equal<RT::w1, RT::f1, RT::w2, RT::f2, C::wu>(static_cast<i128>(ra),
+                                                                    static_cast<u128>(rb));
+      }
+    } else {
+      if (static_cast<i128>(rb) < 0) {
+        return modular_equal<RT::w2, RT::f2, RT::w1, RT::f1, C::wu>(static_cast<i128>(rb),
+                                                                    static_cast<u128>(ra));
+      }
+    }
+  }
+  using U = typename C::U;
+  return cmp_exact(widen<U, RT::s1>(raw_of(a)), RT::f1, widen<U, RT::s2>(raw_of(b)), RT::f2) ==
+         0;
+}
+
+// Section 7: shift amounts. Signed C integers and ap_int go through to_int() (low 32 bits,
+// negative reverses the direction), unsigned ones through to_uint(); an ap_fixed amount is
+// truncated toward zero first.
+template <class T>
+constexpr std::int64_t shift_amount(const T& n) noexcept {
+  if constexpr (std::integral<T>) {
+    if constexpr (std::is_signed_v<T>) {
+      return static_cast<std::int32_t>(static_cast<std::uint32_t>(n));
+    } else {
+      return static_cast<std::uint32_t>(n);
+    }
+  } else if constexpr (operand<T>::s) {
+    return n.to_int();
+  } else {
+    return n.to_uint();
+  }
+}
+template <class T>
+concept shift_operand = operand<std::remove_cvref_t<T>>::valid;
+
+// Decimal text of an unsigned 128-bit integer.
+inline std::string u128_to_string(u128 x) {
+  char buf[48];
+  int pos = 48;
+  do {
+    buf[--pos] = static_cast<char>('0' + static_cast<int>(x % 10));
+    x /= 10;
+  } while (x != 0);
+  return std::string(buf + pos, buf + 48);
+}
+
+inline std::string double_to_string(double d) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), d);
+  return std::string(buf, res.ptr);
+}
+
+// Exact decimal text of raw * 2^-F when it fits the 128-bit arithmetic, else the double.
+template <int F, bool S, class R>
+std::string fixed_to_string(R raw, double approx) {
+  const wide<u128> v = widen<u128, S>(raw);
+  const u128 mag = v.neg ? u128(0) - v.bits : v.bits;
+  std::string sign = v.neg ? "-" : "";
+  if constexpr (F <= 0) {
+    if (mag != 0 && (-F >= 128 || (mag >> (127 + F)) != 0)) return double_to_string(approx);
+    return sign + u128_to_string(mag << -F);
+  } else if constexpr (F > 124) {
+    return double_to_string(approx);
+  } else {
+    std::string s = sign + u128_to_string(mag >> F);
+    u128 frac = mag & low_mask<u128>(F);
+    if (frac != 0) s += '.';
+    while (frac != 0) {
+      frac *= 10;
+      s += static_cast<char>('0' + static_cast<int>(frac >> F));
+      frac &= low_mask<u128>(F);
+    }
+    return s;
+  }
+}
+
+// Proxies for x[i] and x.range(hi, lo) (section 10): raw bit access, no Q/O on writes.
+template <class Owner>
+class bit_ref {
+ public:
+  constexpr bit_ref(Owner* owner, int index) noexcept : owner_(owner), index_(index) {}
+  constexpr bit_ref(const bit_ref&) noexcept = default;
+  constexpr operator bool() const noexcept { return std::as_const(*owner_)[index_]; }
+  constexpr bool to_bool() const noexcept { return static_cast<bool>(*this); }
+  constexpr bit_ref& operator=(bool b) noexcept {
+    owner_->set_bit(index_, b);
+    return *this;
+  }
+  constexpr bit_ref& operator=(const bit_ref& other) noexcept {
+    return *this = static_cast<bool>(other);
+  }
+
+ private:
+  Owner* owner_;
+  int index_;
+};
+
+template <class Owner>
+class range_ref {
+ public:
+  constexpr range_ref(Owner* owner, int hi, int lo) noexcept : owner_(owner), hi_(hi), lo_(lo) {}
+  constexpr range_ref(const range_ref&) noexcept = default;
+
+  // Read as an unsigned integer of length() bits (hi < lo reads the bits reversed).
+  constexpr u128 raw_bits() const noexcept { return owner_->get_range(hi_, lo_); }
+  constexpr std::uint64_t to_uint64() const noexcept {
+    return static_cast<std::uint64_t>(raw_bits());
+  }
+  constexpr std::int64_t to_int64() const noexcept {
+    return static_cast<std::int64_t>(to_uint64());
+  }
+  constexpr unsigned to_uint() const noexcept { return static_cast<unsigned>(to_uint64()); }
+  constexpr int to_int() const noexcept { return static_cast<int>(to_uint()); }
+  constexpr int length() const noexcept { return (hi_ >= lo_ ? hi_ - lo_ : lo_ - hi_) + 1; }
+  constexpr bool operator==(std::uint64_t v) const noexcept { return raw_bits() == v; }
+
+  // Writes the low length() bits of v (raw, no quantization or overflow handling).
+  constexpr range_ref& operator=(std::uint64_t v) noexcept
+    requires(!std::is_const_v<Owner>)
+  {
+    owner_->set_range(hi_, lo_, u128(v));
+    return *this;
+  }
+  template <int W2, bool S2>
+  constexpr range_ref& operator=(const int_base<W2, S2>& v) noexcept
+    requires(!std::is_const_v<Owner>)
+  {
+    owner_->set_range(hi_, lo_, static_cast<u128>(v.raw()));
+    return *this;
+  }
+  template <class O2>
+  constexpr range_ref& operator=(const range_ref<O2>& v) noexcept
+    requires(!std::is_const_v<Owner>)
+  {
+    owner_->set_range(hi_, lo_, v.raw_bits());
+    return *this;
+  }
+  constexpr range_ref& operator=(const range_ref& v) noexcept
+    requires(!std::is_const_v<Owner>)
+  {
+    owner_->set_range(hi_, lo_, v.raw_bits());
+    return *this;
+  }
+
+ private:
+  Owner* owner_;
+  int hi_;
+  int lo_;
+};
+
+// Shared raw-bit helpers of fixed_base and int_base (W-bit canonical storage in word U).
+template <int W, bool S, class U>
+constexpr u128 read_range(U v, int hi, int lo) noexcept {
+  if (hi < lo) {
+    // Section 10: hi < lo returns the bits reversed.
+    u128 r = 0;
+    for (int i = hi; i <= lo; ++i) r = (r << 1) | u128((v >> i) & U(1));
+    return r;
+  }
+  return u128((v >> lo) & low_mask<U>(hi - lo + 1));
+}
+template <int W, bool S, class U>
+constexpr U write_range(U v, int hi, int lo, u128 x) noexcept {
+  if (hi < lo) {
+    for (int i = hi; i <= lo; ++i) {
+      v = assign_bits<U>(v, i, i, ((x >> (lo - i)) & 1) != 0);
+    }
+    return extend<W, S>(v);
+  }
+  const U m = low_mask<U>(hi - lo + 1) << lo;
+  return extend<W, S>(U((v & ~m) | ((static_cast<U>(x) << lo) & m)));
+}
+
+}  // namespace detail
+
+// =============================================================================================
+// fixed_base: ap_fixed_base<W, I, S, Q, O, N>. Use the aliases fixed<> / ufixed<>.
+// =============================================================================================
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+class fixed_base {
+  static_assert(W >= 1, "voxcast::hls::fixed: W must be at least 1");
+  static_assert(W <= max_width,
+                "voxcast::hls::fixed: W exceeds 128 bits, the widest type the clone supports "
+                "(stored or produced by an operator, e.g. a 64 x 64-bit product); narrow the "
+                "operands before this operation");
+  static_assert(S || O != WRAP_SM,
+                "voxcast::hls::ufixed: WRAP_SM is signed only (ap_ufixed calls exit(1))");
+  static_assert(N >= 0 && N <= W, "voxcast::hls::fixed: saturation bits N must be in [0, W]");
+
+  using word = detail::word_t<W>;
+
+ public:
+  using raw_type = detail::raw_t<W, S>;
+  static constexpr int width = W;
+  static constexpr int iwidth = I;
+  static constexpr q_mode qmode = Q;
+  static constexpr o_mode omode = O;
+  static constexpr int nbits = N;
+  static constexpr bool is_signed = S;
+
+  // ---- Construction: every conversion into a different type quantizes and handles overflow
+  // with this type's Q/O/N (section 4); copies of the same type are bit copies.
+  // Default construction zero-initialises (ap leaves V uninitialised): deterministic
+  // simulation; code must not rely on either.
+  constexpr fixed_base() noexcept = default;
+
+  template <int W2, int I2, bool S2, q_mode Q2, o_mode O2, int N2>
+  constexpr fixed_base(const fixed_base<W2, I2, S2, Q2, O2, N2>& x) noexcept
+      : v_(convert<W2 - I2, S2, W2>(x.raw())) {}
+
+  template <int W2, bool S2>
+  constexpr fixed_base(const int_base<W2, S2>& x) noexcept : v_(convert<0, S2, W2>(x.raw())) {}
+
+  template <std::integral T>
+  constexpr fixed_base(T x) noexcept
+      : v_(convert<0, detail::operand<T>::s, detail::operand<T>::w>(x)) {}
+
+  // Section 9: exact decode, one quantization and one overflow step; NaN/inf per its table.
+  constexpr fixed_base(double d) noexcept : v_(from_double(d)) {}
+  constexpr fixed_base(float f) noexcept : v_(from_double(static_cast<double>(f))) {}
+
+  // ---- Raw bits. from_raw keeps the low W bits of its argument (two's complement) and
+  // reinterprets them; raw() returns V sign-extended (signed) or zero-extended (unsigned).
+  static constexpr fixed_base from_raw(raw_type bits) noexcept {
+    fixed_base r;
+    r.v_ = static_cast<raw_type>(detail::extend<W, S>(static_cast<word>(bits)));
+    return r;
+  }
+  constexpr raw_type raw() const noexcept { return v_; }
+  // ap names (section 10): bitsToFixed / setBits take the low W bits of a 64-bit pattern.
+  static constexpr fixed_base bitsToFixed(std::uint64_t bits) noexcept {
+    return from_raw(static_cast<raw_type>(bits));
+  }
+  constexpr fixed_base& setBits(std::uint64_t bits) noexcept {
+    v_ = from_raw(static_cast<raw_type>(bits)).v_;
+    return *this;
+  }
+
+  // ---- Conversions out (section 9) ---------------------------------------------------------
+  // Round to nearest even (exact when the value fits 53 bits).
+  constexpr double to_double() const noexcept {
+    return detail::scale<I - W>(static_cast<double>(v_));
+  }
+  constexpr float to_float() const noexcept {
+    return static_cast<float>(detail::scale<I - W>(static_cast<double>(static_cast<float>(v_))));
+  }
+  // Toward zero, then the low bits (wrap). For I <= 0 this returns the mathematically correct
+  // 0; ap sim returns -1 (I == 0, negative non-integer) or stack garbage (I < 0).
+  constexpr int to_int() const noexcept {
+    return static_cast<int>(static_cast<std::uint32_t>(trunc64()));
+  }
+  constexpr unsigned to_uint() const noexcept { return static_cast<std::uint32_t>(trunc64()); }
+  constexpr std::int64_t to_int64() const noexcept { return static_cast<std::int64_t>(trunc64()); }
+  constexpr std::uint64_t to_uint64() const noexcept { return trunc64(); }
+  constexpr long to_long() const noexcept { return static_cast<long>(to_int64()); }
+  constexpr unsigned long to_ulong() const noexcept {
+    return static_cast<unsigned long>(to_uint64());
+  }
+  constexpr char to_char() const noexcept { return static_cast<char>(to_int()); }
+  constexpr bool to_bool() const noexcept { return v_ != 0; }
+
+  // Explicit only: ap converts implicitly, which is what makes "a + 0.5" ambiguous there; here
+  // the conversions are explicit so that "a + 0.5" is equally ill-formed.
+  template <class T>
+    requires std::is_arithmetic_v<T>
+  constexpr explicit operator T() const noexcept {
+    if constexpr (std::is_same_v<T, bool>) {
+      return v_ != 0;
+    } else if constexpr (std::is_same_v<T, float>) {
+      return to_float();
+    } else if constexpr (std::is_floating_point_v<T>) {
+      return static_cast<T>(to_double());
+    } else if constexpr (std::is_signed_v<T>) {
+      return static_cast<T>(to_int64());
+    } else {
+      return static_cast<T>(to_uint64());
+    }
+  }
+
+  // ---- Queries ---------------------------------------------------------------------------
+  constexpr bool is_neg() const noexcept {
+    if constexpr (S) {
+      return v_ < 0;
+    } else {
+      return false;
+    }
+  }
+  constexpr bool is_zero() const noexcept { return v_ == 0; }
+  constexpr bool operator!() const noexcept { return v_ == 0; }
+  constexpr int wl() const noexcept { return W; }
+  constexpr int iwl() const noexcept { return I; }
+  constexpr int length() const noexcept { return W; }
+  constexpr int n_bits() const noexcept { return N; }
+  constexpr int countLeadingZeros() const noexcept {
+    const word u = static_cast<word>(v_) & detail::low_mask<word>(W);
+    if constexpr (W <= 64) {
+      return std::countl_zero(static_cast<std::uint64_t>(u)) - (64 - W);
+    } else {
+      const auto hi = static_cast<std::uint64_t>(u >> 64);
+      const auto lo = static_cast<std::uint64_t>(u);
+      const int z = hi != 0 ? std::countl_zero(hi) : 64 + std::countl_zero(lo);
+      return z - (128 - W);
+    }
+  }
+
+  // ---- Bit and range access (section 10): raw bits, no Q/O --------------------------------
+  constexpr bool operator[](int i) const noexcept { return ((static_cast<word>(v_) >> i) & 1) != 0; }
+  constexpr detail::bit_ref<fixed_base> operator[](int i) noexcept { return {this, i}; }
+  constexpr bool bit(int i) const noexcept { return (*this)[i]; }
+  constexpr detail::bit_ref<fixed_base> bit(int i) noexcept { return {this, i}; }
+  // Bit of weight 2^i, i in [I - W, I - 1].
+  constexpr bool get_bit(int i) const noexcept { return (*this)[i + W - I]; }
+  constexpr void set_bit(int i, bool b) noexcept {
+    v_ = static_cast<raw_type>(
+        detail::extend<W, S>(detail::assign_bits<word>(static_cast<word>(v_), i, i, b)));
+  }
+  constexpr detail::range_ref<fixed_base> range(int hi, int lo) noexcept { return {this, hi, lo}; }
+  constexpr detail::range_ref<const fixed_base> range(int hi, int lo) const noexcept {
+    return {this, hi, lo};
+  }
+  constexpr detail::range_ref<fixed_base> range() noexcept { return {this, W - 1, 0}; }
+  constexpr detail::range_ref<const fixed_base> range() const noexcept { return {this, W - 1, 0}; }
+  constexpr detail::range_ref<fixed_base> operator()(int hi, int lo) noexcept {
+    return {this, hi, lo};
+  }
+  constexpr detail::range_ref<const fixed_base> operator()(int hi, int lo) const noexcept {
+    return {this, hi, lo};
+  }
+  constexpr detail::u128 get_range(int hi, int lo) const noexcept {
+    return detail::read_range<W, S>(static_cast<word>(v_), hi, lo);
+  }
+  constexpr void set_range(int hi, int lo, detail::u128 x) noexcept {
+    v_ = static_cast<raw_type>(detail::write_range<W, S>(static_cast<word>(v_), hi, lo, x));
+  }
+
+  // ---- Unary operators (section 11) -------------------------------------------------------
+  constexpr fixed_base operator+() const noexcept { return *this; }
+  // Exact in <W+1, I+1, signed>, so -MIN is representable.
+  constexpr fixed_base<W + 1, I + 1, true> operator-() const noexcept {
+    using R = fixed_base<W + 1, I + 1, true>;
+    using U = detail::word_t<W + 1>;
+    return R::from_raw(static_cast<typename R::raw_type>(U(U(0) - static_cast<U>(v_))));
+  }
+  // Negation in the same width (wraps), as ap's getNeg().
+  constexpr fixed_base<W, I, true, Q, O, N> getNeg() const noexcept {
+    using R = fixed_base<W, I, true, Q, O, N>;
+    return R::from_raw(static_cast<typename R::raw_type>(word(word(0) - static_cast<word>(v_))));
+  }
+  // Bitwise NOT in the same type with default Q/O (ap: ap_fixed_base<W, I, S>).
+  constexpr fixed_base<W, I, S> operator~() const noexcept {
+    using R = fixed_base<W, I, S>;
+    return R::from_raw(static_cast<typename R::raw_type>(~static_cast<word>(v_)));
+  }
+
+  // Section 11: ++/-- add 1.0 (not one LSB) through +=, so they quantize and handle overflow
+  // with this type's modes; ill-formed for I > W, as in ap.
+  constexpr fixed_base& operator++() noexcept
+    requires(I <= W)
+  {
+    return *this += fixed_base<W - I + 1, 1, false>(1);
+  }
+  constexpr fixed_base& operator--() noexcept
+    requires(I <= W)
+  {
+    return *this -= fixed_base<W - I + 1, 1, false>(1);
+  }
+  constexpr fixed_base operator++(int) noexcept
+    requires(I <= W)
+  {
+    const fixed_base r = *this;
+    ++*this;
+    return r;
+  }
+  constexpr fixed_base operator--(int) noexcept
+    requires(I <= W)
+  {
+    const fixed_base r = *this;
+    --*this;
+    return r;
+  }
+
+  // ---- Compound assignment (section 4): full-precision result, then ONE conversion -------
+  template <class B>
+    requires detail::operand<std::remove_cvref_t<B>>::valid
+  constexpr fixed_base& operator+=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::add>(*this, b);
+  }
+  template <class B>
+    requires detail::operand<std::remove_cvref_t<B>>::valid
+  constexpr fixed_base& operator-=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::sub>(*this, b);
+  }
+  template <class B>
+    requires detail::operand<std::remove_cvref_t<B>>::valid
+  constexpr fixed_base& operator*=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::mul>(*this, b);
+  }
+  template <class B>
+    requires detail::operand<std::remove_cvref_t<B>>::valid
+  constexpr fixed_base& operator/=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::div>(*this, b);
+  }
+  template <class B>
+    requires detail::operand<std::remove_cvref_t<B>>::valid
+  constexpr fixed_base& operator&=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::band>(*this, b);
+  }
+  template <class B>
+    requires detail::operand<std::remove_cvref_t<B>>::valid
+  constexpr fixed_base& operator|=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::bor>(*this, b);
+  }
+  template <class B>
+    requires detail::operand<std::remove_cvref_t<B>>::valid
+  constexpr fixed_base& operator^=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::bxor>(*this, b);
+  }
+
+  // ---- Shifts (section 7): same type including Q/O, raw pattern, no quantization or
+  // overflow handling; negative signed amounts reverse; amounts >= W give 0 / sign fill.
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr fixed_base operator<<(const T& n) const noexcept {
+    return shl(detail::shift_amount(n));
+  }
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr fixed_base operator>>(const T& n) const noexcept {
+    return shr(detail::shift_amount(n));
+  }
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr fixed_base& operator<<=(const T& n) noexcept {
+    return *this = shl(detail::shift_amount(n));
+  }
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr fixed_base& operator>>=(const T& n) noexcept {
+    return *this = shr(detail::shift_amount(n));
+  }
+  // Reinterpret the same bits with the binary point moved (exact, no bits lost).
+  template <int K>
+  constexpr fixed_base<W, I + K, S> lshift() const noexcept {
+    return fixed_base<W, I + K, S>::from_raw(v_);
+  }
+  template <int K>
+  constexpr fixed_base<W, I - K, S> rshift() const noexcept {
+    return fixed_base<W, I - K, S>::from_raw(v_);
+  }
+
+  // ---- Printing: exact decimal (ap's to_string() defaults to radix 2; use to_string(10)
+  // in code that must compile with both). Radix 2 and 16 print the raw W-bit pattern.
+  std::string to_string(int radix = 10) const {
+    if (radix == 2 || radix == 16) return raw_pattern_string(radix);
+    return detail::fixed_to_string<W - I, S>(v_, to_double());
+  }
+
+ private:
+  template <int Fs, bool Ss, int Ws, class R>
+  static constexpr raw_type convert(R raw) noexcept {
+    using U = detail::word_t<detail::imax(W, Ws)>;
+    const detail::wide<U> src = detail::widen<U, Ss>(raw);
+    return store(detail::quantize<W, S, Q, O, N, Fs - (W - I)>(src.bits, src.neg));
+  }
+  static constexpr raw_type from_double(double d) noexcept {
+    const detail::double_parts p = detail::decode(d);
+    using U = detail::word_t<W>;  // the 54-bit signed mantissa fits either word
+    const detail::wide<U> src = detail::widen<U, true>(p.m);
+    return store(detail::quantize<W, S, Q, O, N>(src.bits, src.neg, p.fs - (W - I)));
+  }
+  template <class U>
+  static constexpr raw_type store(U pattern) noexcept {
+    return static_cast<raw_type>(detail::extend<W, S>(static_cast<word>(pattern)));
+  }
+  constexpr std::uint64_t trunc64() const noexcept {
+    return detail::trunc_toward_zero<std::uint64_t, W - I, S>(v_);
+  }
+  constexpr fixed_base shl(std::int64_t n) const noexcept {
+    if (n < 0) return shr(-n);
+    if (n >= W) return from_raw(0);
+    return from_raw(static_cast<raw_type>(static_cast<word>(v_) << n));
+  }
+  constexpr fixed_base shr(std::int64_t n) const noexcept {
+    if (n < 0) return shl(-n);
+    if (n >= W) return from_raw(is_neg() ? static_cast<raw_type>(~word(0)) : raw_type(0));
+    return from_raw(static_cast<raw_type>(v_ >> n));
+  }
+  std::string raw_pattern_string(int radix) const {
+    const int step = radix == 2 ? 1 : 4;
+    const word u = static_cast<word>(v_) & detail::low_mask<word>(W);
+    std::string s = radix == 2 ? "0b" : "0x";
+    for (int pos = ((W - 1) / step) * step; pos >= 0; pos -= step) {
+      s += "0123456789abcdef"[static_cast<int>((u >> pos) & word(radix - 1))];
+    }
+    return s;
+  }
+
+  raw_type v_ = 0;
+};
+
+// =============================================================================================
+// int_base: ap_int_base<W, S>. Use int_t<W> / uint_t<W>. Integer arithmetic like
+// fixed<W, W> without Q/O: every conversion into it wraps (section 12).
+// =============================================================================================
+template <int W, bool S>
+class int_base {
+  static_assert(W >= 1, "voxcast::hls::int_t: W must be at least 1");
+  static_assert(W <= max_width,
+                "voxcast::hls::int_t: W exceeds 128 bits, the widest type the clone supports "
+                "(stored or produced by an operator); narrow the operands first");
+
+  using word = detail::word_t<W>;
+
+ public:
+  using raw_type = detail::raw_t<W, S>;
+  static constexpr int width = W;
+  static constexpr bool is_signed = S;
+
+  // Zero-initialised (ap: uninitialised).
+  constexpr int_base() noexcept = default;
+  template <int W2, bool S2>
+  constexpr int_base(const int_base<W2, S2>& x) noexcept : v_(store(x.raw())) {}
+  template <std::integral T>
+  constexpr int_base(T x) noexcept : v_(store(x)) {}
+  // Conversions from fixed and double truncate toward zero, then wrap (section 9).
+  template <int W2, int I2, bool S2, q_mode Q2, o_mode O2, int N2>
+  constexpr int_base(const fixed_base<W2, I2, S2, Q2, O2, N2>& x) noexcept
+      : v_(store(detail::trunc_toward_zero<word, W2 - I2, S2>(x.raw()))) {}
+  // ap sim gives +1 for d in (-0.5, 0) (section 9 bug); the clone returns the correct 0.
+  constexpr int_base(double d) noexcept : v_(from_double(d)) {}
+  constexpr int_base(float f) noexcept : v_(from_double(static_cast<double>(f))) {}
+
+  static constexpr int_base from_raw(raw_type bits) noexcept {
+    int_base r;
+    r.v_ = store(bits);
+    return r;
+  }
+  constexpr raw_type raw() const noexcept { return v_; }
+
+  constexpr double to_double() const noexcept { return static_cast<double>(v_); }
+  constexpr float to_float() const noexcept { return static_cast<float>(v_); }
+  constexpr int to_int() const noexcept {
+    return static_cast<int>(static_cast<std::uint32_t>(v_));
+  }
+  constexpr unsigned to_uint() const noexcept { return static_cast<std::uint32_t>(v_); }
+  constexpr std::int64_t to_int64() const noexcept {
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(v_));
+  }
+  constexpr std::uint64_t to_uint64() const noexcept { return static_cast<std::uint64_t>(v_); }
+  constexpr long to_long() const noexcept { return static_cast<long>(to_int64()); }
+  constexpr unsigned long to_ulong() const noexcept {
+    return static_cast<unsigned long>(to_uint64());
+  }
+  constexpr char to_char() const noexcept { return static_cast<char>(to_int()); }
+  constexpr bool to_bool() const noexcept { return v_ != 0; }
+  template <class T>
+    requires std::is_arithmetic_v<T>
+  constexpr explicit operator T() const noexcept {
+    if constexpr (std::is_same_v<T, bool>) {
+      return v_ != 0;
+    } else if constexpr (std::is_floating_point_v<T>) {
+      return static_cast<T>(v_);
+    } else {
+      return static_cast<T>(to_uint64());
+    }
+  }
+
+  constexpr bool is_neg() const noexcept {
+    if constexpr (S) {
+      return v_ < 0;
+    } else {
+      return false;
+    }
+  }
+  constexpr bool is_zero() const noexcept { return v_ == 0; }
+  constexpr bool operator!() const noexcept { return v_ == 0; }
+  constexpr int length() const noexcept { return W; }
+  constexpr int countLeadingZeros() const noexcept {
+    return fixed_base<W, W, S>::from_raw(v_).countLeadingZeros();
+  }
+
+  constexpr bool operator[](int i) const noexcept { return ((static_cast<word>(v_) >> i) & 1) != 0; }
+  constexpr detail::bit_ref<int_base> operator[](int i) noexcept { return {this, i}; }
+  constexpr bool bit(int i) const noexcept { return (*this)[i]; }
+  constexpr detail::bit_ref<int_base> bit(int i) noexcept { return {this, i}; }
+  constexpr void set_bit(int i, bool b) noexcept {
+    v_ = static_cast<raw_type>(
+        detail::extend<W, S>(detail::assign_bits<word>(static_cast<word>(v_), i, i, b)));
+  }
+  constexpr detail::range_ref<int_base> range(int hi, int lo) noexcept { return {this, hi, lo}; }
+  constexpr detail::range_ref<const int_base> range(int hi, int lo) const noexcept {
+    return {this, hi, lo};
+  }
+  constexpr detail::range_ref<int_base> range() noexcept { return {this, W - 1, 0}; }
+  constexpr detail::range_ref<const int_base> range() const noexcept { return {this, W - 1, 0}; }
+  constexpr detail::range_ref<int_base> operator()(int hi, int lo) noexcept {
+    return {this, hi, lo};
+  }
+  constexpr detail::range_ref<const int_base> operator()(int hi, int lo) const noexcept {
+    return {this, hi, lo};
+  }
+  constexpr detail::u128 get_range(int hi, int lo) const noexcept {
+    return detail::read_range<W, S>(static_cast<word>(v_), hi, lo);
+  }
+  constexpr void set_range(int hi, int lo, detail::u128 x) noexcept {
+    v_ = static_cast<raw_type>(detail::write_range<W, S>(static_cast<word>(v_), hi, lo, x));
+  }
+
+  constexpr int_base operator+() const noexcept { return *this; }
+  constexpr int_base<W + 1, true> operator-() const noexcept {
+    using U = detail::word_t<W + 1>;
+    using R = int_base<W + 1, true>;
+    return R::from_raw(static_cast<typename R::raw_type>(U(U(0) - static_cast<U>(v_))));
+  }
+  constexpr int_base operator~() const noexcept {
+    return from_raw(static_cast<raw_type>(~static_cast<word>(v_)));
+  }
+  constexpr int_base& operator++() noexcept { return *this += 1; }
+  constexpr int_base& operator--() noexcept { return *this -= 1; }
+  constexpr int_base operator++(int) noexcept {
+    const int_base r = *this;
+    ++*this;
+    return r;
+  }
+  constexpr int_base operator--(int) noexcept {
+    const int_base r = *this;
+    --*this;
+    return r;
+  }
+
+  // Compound assignment with integer operands: full-width result, then wrap.
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator+=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::add>(*this, b);
+  }
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator-=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::sub>(*this, b);
+  }
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator*=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::mul>(*this, b);
+  }
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator/=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::div>(*this, b);
+  }
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator%=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::mod>(*this, b);
+  }
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator&=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::band>(*this, b);
+  }
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator|=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::bor>(*this, b);
+  }
+  template <class B>
+    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  constexpr int_base& operator^=(const B& b) noexcept {
+    return *this = detail::binary<detail::op::bxor>(*this, b);
+  }
+
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr int_base operator<<(const T& n) const noexcept {
+    return shl(detail::shift_amount(n));
+  }
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr int_base operator>>(const T& n) const noexcept {
+    return shr(detail::shift_amount(n));
+  }
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr int_base& operator<<=(const T& n) noexcept {
+    return *this = shl(detail::shift_amount(n));
+  }
+  template <class T>
+    requires detail::shift_operand<T>
+  constexpr int_base& operator>>=(const T& n) noexcept {
+    return *this = shr(detail::shift_amount(n));
+  }
+
+  std::string to_string(int radix = 10) const {
+    if (radix == 2 || radix == 16) return fixed_base<W, W, S>::from_raw(v_).to_string(radix);
+    return detail::fixed_to_string<0, S>(v_, to_double());
+  }
+
+ private:
+  template <class T>
+  static constexpr raw_type store(T x) noexcept {
+    return static_cast<raw_type>(detail::extend<W, S>(static_cast<word>(x)));
+  }
+  static constexpr raw_type from_double(double d) noexcept {
+    // Toward zero on the magnitude, then wrap.
+    const detail::double_parts p = detail::decode(d);
+    const bool neg = p.m < 0;
+    const auto mag = static_cast<detail::u128>(neg ? -p.m : p.m);
+    detail::u128 t = 0;
+    if (p.fs <= 0) {
+      t = -p.fs >= 128 ? detail::u128(0) : mag << -p.fs;
+    } else {
+      t = p.fs >= 128 ? detail::u128(0) : mag >> p.fs;
+    }
+    return store(neg ? detail::u128(detail::u128(0) - t) : t);
+  }
+  constexpr int_base shl(std::int64_t n) const noexcept {
+    if (n < 0) return shr(-n);
+    if (n >= W) return from_raw(0);
+    return from_raw(static_cast<raw_type>(static_cast<word>(v_) << n));
+  }
+  constexpr int_base shr(std::int64_t n) const noexcept {
+    if (n < 0) return shl(-n);
+    if (n >= W) return from_raw(is_neg() ? static_cast<raw_type>(~word(0)) : raw_type(0));
+    return from_raw(static_cast<raw_type>(v_ >> n));
+  }
+
+  raw_type v_ = 0;
+};
+
+// =============================================================================================
+// Binary operators (sections 5, 6, 12): exact in the widened result type.
+// =============================================================================================
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr auto operator+(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::add>(a, b);
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr auto operator-(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::sub>(a, b);
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr auto operator*(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::mul>(a, b);
+}
+// Division by zero is undefined (ap and ac simulation crash with SIGFPE).
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr auto operator/(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::div>(a, b);
+}
+template <class A, class B>
+  requires(detail::operands<A, B> && !detail::fixed_type<A> && !detail::fixed_type<B>)
+constexpr auto operator%(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::mod>(a, b);
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr auto operator&(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::band>(a, b);
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr auto operator|(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::bor>(a, b);
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr auto operator^(const A& a, const B& b) noexcept {
+  return detail::binary<detail::op::bxor>(a, b);
+}
+
+// ---- Comparisons (section 8): exact for equal signedness; mixed signedness follows ap's
+// C-conversion rules. Comparisons with double go through to_double().
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr bool operator==(const A& a, const B& b) noexcept {
+  return detail::equal(a, b);
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr bool operator!=(const A& a, const B& b) noexcept {
+  return !detail::equal(a, b);
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr bool operator<(const A& a, const B& b) noexcept {
+  return detail::compare(a, b) < 0;
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr bool operator<=(const A& a, const B& b) noexcept {
+  return detail::compare(a, b) <= 0;
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr bool operator>(const A& a, const B& b) noexcept {
+  return detail::compare(a, b) > 0;
+}
+template <class A, class B>
+  requires detail::operands<A, B>
+constexpr bool operator>=(const A& a, const B& b) noexcept {
+  return detail::compare(a, b) >= 0;
+}
+
+template <detail::ap_type A>
+constexpr bool operator==(const A& a, double d) noexcept {
+  return a.to_double() == d;
+}
+template <detail::ap_type A>
+constexpr bool operator!=(const A& a, double d) noexcept {
+  return a.to_double() != d;
+}
+template <detail::ap_type A>
+constexpr bool operator<(const A& a, double d) noexcept {
+  return a.to_double() < d;
+}
+template <detail::ap_type A>
+constexpr bool operator<=(const A& a, double d) noexcept {
+  return a.to_double() <= d;
+}
+template <detail::ap_type A>
+constexpr bool operator>(const A& a, double d) noexcept {
+  return a.to_double() > d;
+}
+template <detail::ap_type A>
+constexpr bool operator>=(const A& a, double d) noexcept {
+  return a.to_double() >= d;
+}
+template <detail::ap_type A>
+constexpr bool operator==(double d, const A& a) noexcept {
+  return d == a.to_double();
+}
+template <detail::ap_type A>
+constexpr bool operator!=(double d, const A& a) noexcept {
+  return d != a.to_double();
+}
+template <detail::ap_type A>
+constexpr bool operator<(double d, const A& a) noexcept {
+  return d < a.to_double();
+}
+template <detail::ap_type A>
+constexpr bool operator<=(double d, const A& a) noexcept {
+  return d <= a.to_double();
+}
+template <detail::ap_type A>
+constexpr bool operator>(double d, const A& a) noexcept {
+  return d > a.to_double();
+}
+template <detail::ap_type A>
+constexpr bool operator>=(double d, const A& a) noexcept {
+  return d >= a.to_double();
+}
+
+// ---- Printing: exact decimal value.
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+std::ostream& operator<<(std::ostream& os, const fixed_base<W, I, S, Q, O, N>& x) {
+  return os << x.to_string();
+}
+template <int W, bool S>
+std::ostream& operator<<(std::ostream& os, const int_base<W, S>& x) {
+  return os << x.to_string();
+}
+
+}  // namespace voxcast::hls

@@ -1,0 +1,411 @@
+// Geometry processor: ray setup and stepping, VIZARD II section 2.1 ("for each
+// point P(i,j) of the view plane a ray is cast ... the ray is clipped against the
+// volume ... sample positions are computed incrementally"). The datapath is
+// docs/pipeline.md §0-2, bit by bit; its float twins are ref::primary_ray,
+// ref::clip, ref::sample_count and ray.at(t_enter + k·step) / world_scale; its
+// bit-true twin is bittrue::bt_ray_setup (refmodel/bittrue/geometry.hpp).
+//
+// Layout of this header:
+//   1. GeometryParams<P>: every width and type of the unit, derived from P.
+//   2. GeometryRegisters<P> (§0) and the rsqrt seed ROM (§1.2).
+//   3. The synthesizable unit: pixel_direction (§1.1), rsqrt_newton and
+//      normalize_direction (§1.2, the rsqrt unit), step_vector (§1.3),
+//      pixel_origin (§1.4), clip_ray (§1.5-1.6), ray_setup_perspective /
+//      ray_setup_parallel / ray_setup, and step_position (§2).
+//   4. host:: — loading the registers and the ROM from the raw integers the
+//      driver computes (bittrue::make_frame_registers / make_rsqrt_seed). Not
+//      synthesized.
+#pragma once
+
+#include <cstdint>
+
+#include "hls/types.hpp"
+#include "refmodel/precision/profile.hpp"
+
+#ifndef __SYNTHESIS__
+#include <vector>
+
+#include "refmodel/bittrue/frame_setup.hpp"
+#endif
+
+// Vendor pragmas are emitted only for the synthesis tool (g++ -Wall would warn
+// about an unknown #pragma).
+#ifndef VOXCAST_HLS_PRAGMA
+#if defined(__SYNTHESIS__)
+#define VOXCAST_HLS_PRAGMA(x) _Pragma(#x)
+#else
+#define VOXCAST_HLS_PRAGMA(x)
+#endif
+#endif
+
+namespace voxcast::hls {
+
+// ---- 1. Parameters ------------------------------------------------------------------------
+// a = addr_bits, pf = pos_frac_bits, df = dir_frac_bits, tf = t_frac_bits,
+// sb = rsqrt_seed_bits. Every integer width below follows from a value range
+// stated next to it; every product and sum between rounding points is exact in
+// the operator's widened result type (docs/pipeline.md, "Notation").
+template <PrecisionProfile P>
+struct GeometryParams {
+  static constexpr int a = P.addr_bits;
+  static constexpr int pf = P.pos_frac_bits;
+  static constexpr int df = P.dir_frac_bits;
+  static constexpr int tf = P.t_frac_bits;
+  static constexpr int sb = P.rsqrt_seed_bits;
+  static constexpr int seed_entries = 1 << sb;
+
+  // Pixel coordinates: render.width/height <= 8192 (scene_toml.cpp), so px < 2^13.
+  static constexpr int pixel_bits = 13;
+  // Ray origins (E, O + px·P + py·R) lie within ±2^(a+3) per axis (host-checked,
+  // §0): a + 3 magnitude bits + sign.
+  static constexpr int origin_int_bits = a + 4;
+  // n <= 2^(a+pf) (§1.6): a + pf + 1 bits.
+  static constexpr int count_bits = a + pf + 1;
+  // Bank word address: each bank has ceil(dx/2)·ceil(dy/2)·ceil(dz/2) <= 2^(3a-3) words.
+  static constexpr int word_addr_bits = 3 * (a - 1) > 0 ? 3 * (a - 1) : 1;
+
+  static_assert(sb <= df,
+                "rsqrt_seed_bits must not exceed dir_frac_bits (the seed index is a "
+                "bit select of m, docs/pipeline.md §0)");
+  static_assert(a + pf + tf <= 49,
+                "addr_bits + pos_frac_bits + t_frac_bits must be <= 49 "
+                "(clip quotients below 2^53 LSBs, docs/pipeline.md §0)");
+
+  using pixel_t = uint_t<pixel_bits>;
+  // §0 registers. A, B, C, U and the pixel direction d: |d| < 2 (host-checked at
+  // the four corner pixels; d·d is convex in the pixel), df fraction bits.
+  using dir_t = fixed<df + 2, 2>;
+  using origin_t = fixed<origin_int_bits + pf, origin_int_bits>;  // E, O, P, R, o
+  using kreg_t = ufixed<df + 3, 3>;  // K = step/world_scale <= 4 (step <= 4, world_scale >= 1)
+  using box_t = int_t<a + 1>;        // LO, HI in [0, 2^a); signed so compares are same-sign
+  using coord_t = uint_t<a>;         // voxel index, LAST = dim - 1
+  using dim_t = uint_t<a + 1>;       // dims <= 2^a
+  using half_t = uint_t<a>;          // HX = ceil(dx/2) <= 2^(a-1)
+  using slice_t = uint_t<2 * a>;     // HXY <= 2^(2a-2)
+  using word_addr_t = uint_t<word_addr_bits>;
+
+  // §1.2 rsqrt unit.
+  using n2_t = ufixed<2 * df + 2, 2>;       // d·d < 4, exact (2df fraction bits)
+  using n2_norm_t = ufixed<2 * df + 4, 2>;  // n2·4^e < 1 (e >= -1: 2df + 2 fraction bits)
+  using dnorm_t = fixed<df + 3, 2>;         // d' = d·2^e, |d'| < 1 (df + 1 fraction bits)
+  using m_t = ufixed<df + 1, 1, RND>;       // Q_RND(n2·4^e, df) in [1/4, 1]
+  // Seed entries and y: 1/sqrt(m) in (1, 2] (a few LSBs above 2 after rounding).
+  using y_t = ufixed<df + 2, 2, RND>;
+  using sq_t = ufixed<df + 3, 3, RND>;  // Q_RND(y·y) and Q_RND(m·t): below 4.1 < 8
+  using three_t = ufixed<2, 2>;
+  // y·(3 - t) (fixed<2df+6, 6>) with one more fraction bit, so that halving is exact.
+  using halving_t = fixed<2 * df + 7, 6>;
+  using unit_t = fixed<df + 2, 2, RND>;  // u: |u| <= 1 + a few LSBs
+
+  // §1.3-1.6.
+  using step_t = fixed<pf + 4, 4, RND>;  // s = Q_RND(u·K, pf): |s| <= |u|·K < 4.1
+  // Q_TRN(LO - o, tf): |LO - o| < 2^a + 2^(a+3) < 2^(a+4).
+  using num_t = fixed<a + 5 + tf, a + 5, TRN>;
+  // ap's quotient type (semantics §5-6): tf fraction bits, truncated toward zero.
+  using k_t = decltype(num_t() / step_t());
+  // Q_RND(k_in·s, pf): on a hit |k_in·s[a]| <= max(|LO - o|, |HI - o|) < 2^(a+4).
+  using kstep_t = fixed<a + 5 + pf, a + 5, RND>;
+  // Sample positions: within [LO, HI] up to a fraction of a voxel, LO, HI < 2^a.
+  using pos_t = fixed<a + 2 + pf, a + 2>;
+  using count_t = uint_t<count_bits>;
+};
+
+// ---- 2. Registers and ROM -------------------------------------------------------------------
+// docs/pipeline.md §0, loaded once per frame by host::load_geometry_registers.
+// (P and R of the spec are Pcol and Rrow here: P is the profile.)
+template <PrecisionProfile P>
+struct GeometryRegisters {
+  using G = GeometryParams<P>;
+  bool perspective = true;
+  typename G::dir_t A[3], B[3], C[3];           // perspective directions
+  typename G::origin_t E[3];                    // perspective eye, index space
+  typename G::origin_t O[3], Pcol[3], Rrow[3];  // parallel origin and increments
+  typename G::dir_t U[3];                       // parallel unit direction
+  typename G::kreg_t K[3];                      // step / world_scale
+  typename G::box_t LO[3], HI[3];               // voxel-centre box (crop)
+  typename G::dim_t dims[3];                    // volume dims
+  typename G::coord_t LAST[3];                  // dims - 1
+  typename G::half_t HX;                        // ceil(dx/2), words per bank row
+  typename G::slice_t HXY;                      // HX·ceil(dy/2), words per bank slice
+};
+
+// The rsqrt seed ROM (§1.2), 2^rsqrt_seed_bits entries.
+template <PrecisionProfile P>
+struct RsqrtRom {
+  typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries];
+};
+
+// The result of ray setup for one pixel (§1.5-1.6). k_in, k_out (in samples) are
+// kept for the tests and for mismatch reports; a miss has n = 0 and p0 = k_in =
+// k_out = 0.
+template <PrecisionProfile P>
+struct RaySetup {
+  using G = GeometryParams<P>;
+  bool hit = false;
+  typename G::count_t n;
+  typename G::pos_t p0[3];
+  typename G::step_t s[3];
+  typename G::k_t k_in, k_out;
+};
+
+// ---- 3. The unit ----------------------------------------------------------------------------
+
+// §1.1: perspective pixel direction d = A + px·B + py·C (exact).
+template <PrecisionProfile P>
+void pixel_direction(const GeometryRegisters<P>& r, typename GeometryParams<P>::pixel_t px,
+                     typename GeometryParams<P>::pixel_t py,
+                     typename GeometryParams<P>::dir_t d[3]) {
+  [[maybe_unused]] dir_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    d[k] = r.A[k] + px * r.B[k] + py * r.C[k];
+  }
+}
+
+// §1.2: seed look-up and two Newton steps of y <- y·(3 - m·y²)/2; y ~ 1/sqrt(m).
+template <PrecisionProfile P>
+typename GeometryParams<P>::y_t rsqrt_newton(
+    const typename GeometryParams<P>::m_t& m,
+    const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries]) {
+  using G = GeometryParams<P>;
+  // floor(m·2^sb): bits [df, df - sb] of m (its integer bit and the top sb
+  // fraction bits); 2^sb only when m rounded up to 1.
+  unsigned idx = static_cast<unsigned>(m.range(G::df, G::df - G::sb).to_uint64());
+  if (idx > static_cast<unsigned>(G::seed_entries - 1)) idx = G::seed_entries - 1;
+  typename G::y_t y = seed[idx];
+  const typename G::three_t three = 3;
+  [[maybe_unused]] newton_loop : for (int it = 0; it < 2; ++it) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    typename G::sq_t t = y * y;                 // Q_RND(y·y, df)
+    t = m * t;                                  // Q_RND(m·t, df)
+    typename G::halving_t h = y * (three - t);  // exact
+    h >>= 1;                                    // exact: h has one spare fraction bit
+    y = h;                                      // Q_RND(·, df)
+  }
+  return y;
+}
+
+// §1.2: u = Q_RND(d·2^e · y, df), the unit direction (u = 0 if d = 0).
+template <PrecisionProfile P>
+void normalize_direction(
+    const typename GeometryParams<P>::dir_t d[3],
+    const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries],
+    typename GeometryParams<P>::unit_t u[3]) {
+  using G = GeometryParams<P>;
+  const typename G::n2_t n2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  // Leading-zero count (a priority encoder over the 2df + 2 bits of n2).
+  int lz = G::n2_t::width;
+  [[maybe_unused]] lzc_loop : for (int i = 0; i < G::n2_t::width; ++i) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    if (n2[i]) lz = G::n2_t::width - 1 - i;
+  }
+  if (lz == G::n2_t::width) {
+    [[maybe_unused]] zero_loop : for (int k = 0; k < 3; ++k) {
+      VOXCAST_HLS_PRAGMA(HLS UNROLL)
+      u[k] = 0;
+    }
+    return;
+  }
+  // The top set bit of n2 has weight 2^(1 - lz); n2·4^e in [1/4, 1) for
+  // e = floor((-1 - (1 - lz))/2) = lz/2 - 1, in [-1, df - 1].
+  const int e = lz / 2 - 1;
+  typename G::n2_norm_t nn = n2;
+  typename G::dnorm_t dn[3];
+  [[maybe_unused]] norm_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    dn[k] = d[k];
+    if (e < 0) {
+      dn[k] >>= 1;  // exact: dnorm_t has one more fraction bit than dir_t
+    } else {
+      dn[k] <<= e;  // exact: |d·2^e| < 1
+    }
+  }
+  if (e < 0) {
+    nn >>= 2;  // exact: two spare fraction bits
+  } else {
+    nn <<= 2 * e;  // exact: n2·4^e < 1
+  }
+  const typename G::m_t m = nn;  // Q_RND(n2·4^e, df)
+  const typename G::y_t y = rsqrt_newton<P>(m, seed);
+  [[maybe_unused]] unit_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    u[k] = dn[k] * y;  // Q_RND(d'·y, df)
+  }
+}
+
+// §1.3: s[a] = Q_RND(u[a]·K[a], pf).
+template <PrecisionProfile P>
+void step_vector(const GeometryRegisters<P>& r, const typename GeometryParams<P>::unit_t u[3],
+                 typename GeometryParams<P>::step_t s[3]) {
+  [[maybe_unused]] step_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    s[k] = u[k] * r.K[k];
+  }
+}
+
+// §1.4, parallel: o = O + px·P + py·R (exact; the host keeps it in range).
+template <PrecisionProfile P>
+void pixel_origin(const GeometryRegisters<P>& r, typename GeometryParams<P>::pixel_t px,
+                  typename GeometryParams<P>::pixel_t py,
+                  typename GeometryParams<P>::origin_t o[3]) {
+  [[maybe_unused]] origin_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    o[k] = r.O[k] + px * r.Pcol[k] + py * r.Rrow[k];
+  }
+}
+
+// §1.5-1.6: clip in units of samples, sample count and first position.
+template <PrecisionProfile P>
+RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParams<P>::origin_t o[3],
+                     const typename GeometryParams<P>::step_t s[3]) {
+  using G = GeometryParams<P>;
+  using k_t = typename G::k_t;
+  RaySetup<P> ray;
+  k_t k_in = 0;
+  k_t k_out = 0;
+  bool any = false;    // an axis with s != 0
+  bool inside = true;  // every axis with s = 0 has LO <= o <= HI
+  [[maybe_unused]] clip_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    ray.s[k] = s[k];
+    if (s[k] == 0) {
+      if (o[k] < r.LO[k] || o[k] > r.HI[k]) inside = false;
+    } else {
+      const typename G::num_t num_lo = r.LO[k] - o[k];  // Q_TRN(LO - o, tf)
+      const typename G::num_t num_hi = r.HI[k] - o[k];
+      const k_t k_lo = num_lo / s[k];  // TRUNC0(·, tf)
+      const k_t k_hi = num_hi / s[k];
+      const k_t k_near = k_lo < k_hi ? k_lo : k_hi;
+      const k_t k_far = k_lo < k_hi ? k_hi : k_lo;
+      if (!any || k_near > k_in) k_in = k_near;
+      if (!any || k_far < k_out) k_out = k_far;
+      any = true;
+    }
+  }
+  if (k_in < 0) k_in = 0;
+  ray.hit = any && inside && !(k_in > k_out);
+  if (ray.hit) {
+    ray.k_in = k_in;
+    ray.k_out = k_out;
+    ray.n = k_out - k_in;  // floor (non-negative: truncation toward zero)
+    ray.n++;
+  } else {
+    ray.k_in = 0;
+    ray.k_out = 0;
+    ray.n = 0;
+  }
+  [[maybe_unused]] p0_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    const typename G::kstep_t d = k_in * s[k];  // Q_RND(k_in·s, pf)
+    if (ray.hit) {
+      ray.p0[k] = o[k] + d;
+    } else {
+      ray.p0[k] = 0;
+    }
+  }
+  return ray;
+}
+
+// §1, perspective camera: direction, rsqrt unit, step vector, clip.
+template <PrecisionProfile P>
+RaySetup<P> ray_setup_perspective(
+    const GeometryRegisters<P>& r,
+    const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries], int px, int py) {
+  using G = GeometryParams<P>;
+  const typename G::pixel_t x = px;
+  const typename G::pixel_t y = py;
+  typename G::dir_t d[3];
+  typename G::unit_t u[3];
+  typename G::step_t s[3];
+  pixel_direction<P>(r, x, y, d);
+  normalize_direction<P>(d, seed, u);
+  step_vector<P>(r, u, s);
+  return clip_ray<P>(r, r.E, s);
+}
+
+// §1, parallel camera: no rsqrt unit (u = U).
+template <PrecisionProfile P>
+RaySetup<P> ray_setup_parallel(const GeometryRegisters<P>& r, int px, int py) {
+  using G = GeometryParams<P>;
+  const typename G::pixel_t x = px;
+  const typename G::pixel_t y = py;
+  typename G::unit_t u[3];
+  typename G::step_t s[3];
+  typename G::origin_t o[3];
+  [[maybe_unused]] unit_copy_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    u[k] = r.U[k];
+  }
+  step_vector<P>(r, u, s);
+  pixel_origin<P>(r, x, y, o);
+  return clip_ray<P>(r, o, s);
+}
+
+// §1, either camera (the register file says which).
+template <PrecisionProfile P>
+RaySetup<P> ray_setup(const GeometryRegisters<P>& r,
+                      const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries],
+                      int px, int py) {
+  if (r.perspective) return ray_setup_perspective<P>(r, seed, px, py);
+  return ray_setup_parallel<P>(r, px, py);
+}
+
+// §2: p += s (exact in pf bits).
+template <PrecisionProfile P>
+void step_position(typename GeometryParams<P>::pos_t p[3],
+                   const typename GeometryParams<P>::step_t s[3]) {
+  [[maybe_unused]] advance_loop : for (int k = 0; k < 3; ++k) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    p[k] += s[k];
+  }
+}
+
+// ---- 4. Host side: register and ROM loading (not synthesized) ------------------------------
+#ifndef __SYNTHESIS__
+namespace host {
+
+// A fixed or integer type holding the raw two's-complement integer `raw` (its low W bits).
+template <class T>
+T from_raw_bits(std::int64_t raw) {
+  T x;
+  x.range(T::width - 1, 0) = static_cast<std::uint64_t>(raw);
+  return x;
+}
+
+template <PrecisionProfile P>
+GeometryRegisters<P> load_geometry_registers(const bittrue::FrameRegisters& f) {
+  using G = GeometryParams<P>;
+  GeometryRegisters<P> r;
+  r.perspective = f.perspective;
+  [[maybe_unused]] register_loop : for (int k = 0; k < 3; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    r.A[k] = from_raw_bits<typename G::dir_t>(f.A[i]);
+    r.B[k] = from_raw_bits<typename G::dir_t>(f.B[i]);
+    r.C[k] = from_raw_bits<typename G::dir_t>(f.C[i]);
+    r.E[k] = from_raw_bits<typename G::origin_t>(f.E[i]);
+    r.O[k] = from_raw_bits<typename G::origin_t>(f.O[i]);
+    r.Pcol[k] = from_raw_bits<typename G::origin_t>(f.P[i]);
+    r.Rrow[k] = from_raw_bits<typename G::origin_t>(f.R[i]);
+    r.U[k] = from_raw_bits<typename G::dir_t>(f.U[i]);
+    r.K[k] = from_raw_bits<typename G::kreg_t>(f.K[i]);
+    r.LO[k] = from_raw_bits<typename G::box_t>(f.LO[i]);
+    r.HI[k] = from_raw_bits<typename G::box_t>(f.HI[i]);
+    r.dims[k] = from_raw_bits<typename G::dim_t>(f.dims[i]);
+    r.LAST[k] = from_raw_bits<typename G::coord_t>(f.dims[i] - 1);
+  }
+  r.HX = from_raw_bits<typename G::half_t>((f.dims[0] + 1) / 2);
+  r.HXY =
+      from_raw_bits<typename G::slice_t>(std::int64_t{(f.dims[0] + 1) / 2} * ((f.dims[1] + 1) / 2));
+  return r;
+}
+
+template <PrecisionProfile P>
+void load_rsqrt_rom(const std::vector<bittrue::Raw>& seed, RsqrtRom<P>& rom) {
+  using G = GeometryParams<P>;
+  [[maybe_unused]] rom_loop : for (int i = 0; i < G::seed_entries; ++i) rom.seed[i] =
+      from_raw_bits<typename G::y_t>(seed[static_cast<std::size_t>(i)]);
+}
+
+}  // namespace host
+#endif
+
+}  // namespace voxcast::hls

@@ -1,0 +1,137 @@
+// The VIZARD II ray-casting pipeline, top level (docs/pipeline.md): the units
+// of this folder composed per ray, and the frame loop a vendor tool
+// synthesizes. Layer 2 of the Vitis-Libraries split: the units (layer 1) carry
+// no interface pragmas; this file does.
+//
+//   geometry processor (ray setup, stepping) -> address generator ->
+//   interpolation processor -> classification table -> reflectance map ->
+//   shader -> compositor (ERT, MIP) -> output quantization
+//
+// A MIP or unshaded frame never reads the reflectance map and a parallel camera
+// never reads the rsqrt ROM, so a design built for such scenes omits them
+// (docs/pipeline.md §1.2, §5).
+#pragma once
+
+#include <cstdint>
+
+#include "hls/classification_table.hpp"
+#include "hls/compositor.hpp"
+#include "hls/geometry_processor.hpp"
+#include "hls/interpolation_processor.hpp"
+#include "hls/reflectance_map.hpp"
+#include "hls/shader.hpp"
+#include "hls/types.hpp"
+
+namespace voxcast::hls {
+
+enum class FrameMode : std::uint8_t { Shaded = 0, Unshaded = 1, Mip = 2 };
+
+// Everything on chip for one frame: registers and tables, loaded by the host
+// between frames.
+template <PrecisionProfile P>
+struct FrameState {
+  GeometryRegisters<P> geometry;
+  RsqrtRom<P> rsqrt;
+  ClassificationTable<P> class_table;
+  ReflectanceRegisters<P> reflectance_regs;
+  ReflectanceMap<P> reflectance;
+  CompositorRegisters<P> compositor;
+  FrameMode mode;
+};
+
+// Tracing hook: the default does nothing and compiles away. The cosim harness
+// passes a tracer that records every unit's output (cosim/hls_engine.cpp).
+struct NullTracer {
+  template <class Ray>
+  void ray(const Ray&) {}
+  template <class... Args>
+  void sample(const Args&...) {}
+};
+
+// One ray through the whole pipeline; `samples` counts the samples it took.
+template <PrecisionProfile P, class Banks, class Tracer = NullTracer>
+OutputPixel<P> cast_ray(const FrameState<P>& f, const Banks& banks, int px, int py,
+                        std::uint64_t& samples, Tracer& tracer) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE off)
+  const RaySetup<P> ray = ray_setup<P>(f.geometry, f.rsqrt.seed, px, py);
+  tracer.ray(ray);
+  Accumulator<P> acc;
+  if (!ray.hit) return output<P>(acc);
+  const bool mip = f.mode == FrameMode::Mip;
+  const bool shaded = f.mode == FrameMode::Shaded;
+  typename CompositorParams<P>::value_t peak = 0;
+  auto per_sample = [&](std::uint64_t, const auto& p, const Sample<P>& s) -> bool {
+    ++samples;
+    if (mip) {
+      mip_update<P>(peak, s.value);
+      tracer.sample(p, s, peak);
+      return true;
+    }
+    const ClassEntry<P> e = classify<P>(f.class_table, s.value);
+    if (e.alpha == 0) {  // transparent: no change, no ERT test (§7)
+      tracer.sample(p, s, e, Reflect<P>{0, 0}, ShadedColor<P>{}, acc);
+      return true;
+    }
+    Reflect<P> r{0, 0};
+    if (shaded) r = reflect<P>(f.reflectance, f.reflectance_regs, s.g);
+    const ShadedColor<P> c = shade<P>(e, r, shaded);
+    composite<P>(acc, c, e.alpha);
+    tracer.sample(p, s, e, r, c, acc);
+    return !ert_reached<P>(acc, f.compositor);
+  };
+  march_ray<P>(f.geometry, banks, ray, per_sample);
+  if (mip) acc = mip_pixel<P>(peak, f.compositor);
+  return output<P>(acc);
+}
+
+// The frame loop over rows [y0, y1) of a width-pixel image: one pixel per
+// iteration, written to fb[y * width + x]. The cosim harness calls it for row
+// ranges on several host threads; the synthesized top calls it for the frame.
+template <PrecisionProfile P, class Banks>
+void render_rows(const FrameState<P>& f, const Banks& banks, int width, int y0, int y1,
+                 OutputPixel<P>* fb, std::uint64_t* samples) {
+  NullTracer none;
+  std::uint64_t taken = 0;
+  [[maybe_unused]] row_loop : for (int y = y0; y < y1; ++y) {
+    VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 8192 avg = 256)
+    [[maybe_unused]] pixel_loop : for (int x = 0; x < width; ++x) {
+      VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 8192 avg = 256)
+      fb[y * width + x] = cast_ray<P>(f, banks, x, y, taken, none);
+    }
+  }
+  *samples = taken;
+}
+
+// The synthesizable top: the frame state and the 8 voxel banks in external
+// memory (one AXI master each, as the card's DIMM channels), the frame buffer
+// out. Generated wrappers (docs/synthesis.md) instantiate it for one profile.
+template <PrecisionProfile P>
+void vizard2_frame(const FrameState<P>* frame,
+                   const typename InterpolationParams<P>::packed_word_t* bank0,
+                   const typename InterpolationParams<P>::packed_word_t* bank1,
+                   const typename InterpolationParams<P>::packed_word_t* bank2,
+                   const typename InterpolationParams<P>::packed_word_t* bank3,
+                   const typename InterpolationParams<P>::packed_word_t* bank4,
+                   const typename InterpolationParams<P>::packed_word_t* bank5,
+                   const typename InterpolationParams<P>::packed_word_t* bank6,
+                   const typename InterpolationParams<P>::packed_word_t* bank7, int width,
+                   int height, OutputPixel<P>* fb, std::uint64_t* samples) {
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE s_axilite port = width)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE s_axilite port = height)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE s_axilite port = return)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = frame offset = slave bundle = gmem_frame)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank0 offset = slave bundle = dimm0)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank1 offset = slave bundle = dimm0)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank2 offset = slave bundle = dimm1)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank3 offset = slave bundle = dimm1)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank4 offset = slave bundle = dimm2)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank5 offset = slave bundle = dimm2)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank6 offset = slave bundle = dimm3)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank7 offset = slave bundle = dimm3)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = fb offset = slave bundle = gmem_fb)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = samples offset = slave bundle = gmem_fb)
+  const PackedBanks<P> banks{{bank0, bank1, bank2, bank3, bank4, bank5, bank6, bank7}};
+  render_rows<P>(*frame, banks, width, 0, height, fb, samples);
+}
+
+}  // namespace voxcast::hls

@@ -1,0 +1,93 @@
+// The host's side of the fixed-point design: everything the driver computes in
+// double and loads into the card before a frame (docs/pipeline.md §0 and the
+// tables of §1, §4, §5), as raw two's-complement integers at the formats the
+// profile defines. The hls engine and the bit-true reference both consume this
+// one structure, so they check the datapath, not two copies of the set-up.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "refmodel/precision/profile.hpp"
+#include "refmodel/render/raycaster.hpp"
+#include "refmodel/scene/scene.hpp"
+
+namespace voxcast::bittrue {
+
+using Raw = std::int64_t;  // a fixed-point value's integer V (value = V * 2^-F)
+using Raw3 = std::array<Raw, 3>;
+
+// docs/pipeline.md §0.
+struct FrameRegisters {
+  bool perspective = true;
+  int width = 0, height = 0;
+  ref::RenderMode mode = ref::RenderMode::Shaded;
+  Raw3 A{}, B{}, C{};  // perspective directions, dir_frac_bits
+  Raw3 E{};            // perspective eye, index space, pos_frac_bits
+  Raw3 O{}, P{}, R{};  // parallel origin and increments, index space, pos_frac_bits
+  Raw3 U{};            // parallel unit direction, dir_frac_bits
+  Raw3 K{};            // step / world_scale per axis, dir_frac_bits
+  Raw3 IS{};           // 1 / world_scale per axis, dir_frac_bits
+  std::array<int, 3> LO{}, HI{};  // voxel-centre box (crop), integers
+  std::array<int, 3> dims{};      // volume dims
+  Raw RM = 0;                     // 1 / max_stored, dir_frac_bits (MIP)
+  bool ert_enabled = true;
+  Raw ert_threshold = 0;          // acc_bits
+};
+
+// One voxel word (docs/pipeline.md §3.4).
+struct VoxelWord {
+  std::uint32_t value = 0;      // value_bits
+  std::array<std::int32_t, 3> gradient{};  // gradient_bits signed, gradient_frac_bits
+};
+
+// The volume in 8 interleaved banks (docs/pipeline.md §3.3).
+struct VoxelMemory {
+  std::array<int, 3> dims{};
+  std::array<std::vector<VoxelWord>, 8> banks;
+};
+
+// One classification-table entry, each field an unsigned fraction (§4).
+struct ClassEntry {
+  std::uint32_t r = 0, g = 0, b = 0;  // color_bits
+  std::uint32_t alpha = 0;            // alpha_bits, opacity-corrected for the step
+  std::uint32_t ka = 0, kd = 0, ks = 0;  // k_bits
+};
+
+struct FrameSetup {
+  PrecisionProfile profile;
+  FrameRegisters regs;
+  std::vector<Raw> rsqrt_seed;           // 2^rsqrt_seed_bits entries, dir_frac_bits (§1.2)
+  std::vector<ClassEntry> class_table;   // 2^tf_addr_bits entries (§4)
+  std::vector<std::uint32_t> rm_diffuse;   // 6 rm_res^2 entries, rm_int_bits.rm_frac_bits (§5)
+  std::vector<std::uint32_t> rm_specular;  // likewise
+};
+
+// Raw integer of Q_RND(x, frac_bits) (ties towards +inf), for register loads.
+Raw quantize_rnd(double x, int frac_bits);
+
+// --- Set-up, split by the unit that owns it ---------------------------------
+// Geometry processor registers (§0) and the rsqrt seed ROM (§1.2):
+// refmodel/bittrue/setup_geometry.cpp.
+FrameRegisters make_frame_registers(const PrecisionProfile& profile, const ref::Scene& scene,
+                                    const ref::RenderInputs& inputs);
+std::vector<Raw> make_rsqrt_seed(const PrecisionProfile& profile);
+// The volume's voxel words in their banks (value + quantized gradient property, §3.3-3.4).
+VoxelMemory make_voxel_memory(const PrecisionProfile& profile, const ref::Volume& volume,
+                              const ref::GradientField& gradients);
+
+// Classification table (§4) and reflectance maps (§5):
+// refmodel/bittrue/setup_tables.cpp. `step` is the sampling distance in world
+// units (opacity correction is baked into the table).
+std::vector<ClassEntry> make_class_table(const PrecisionProfile& profile,
+                                         const ref::TransferFunction& tf_stored, double step);
+void make_reflectance_maps(const PrecisionProfile& profile, const ref::ShadingSetup& shading,
+                           std::vector<std::uint32_t>& diffuse,
+                           std::vector<std::uint32_t>& specular);
+
+// All of the above but the voxel memory, for one frame.
+FrameSetup make_frame_setup(const PrecisionProfile& profile, const ref::Scene& scene,
+                            const ref::RenderInputs& inputs);
+
+}  // namespace voxcast::bittrue

@@ -1,0 +1,132 @@
+#include "refmodel/bittrue/raycaster.hpp"
+
+#include "refmodel/parallel.hpp"
+
+namespace voxcast::bittrue {
+
+FrameSetup make_frame_setup(const PrecisionProfile& profile, const ref::Scene& scene,
+                            const ref::RenderInputs& inputs) {
+  FrameSetup fs;
+  fs.profile = profile;
+  fs.regs = make_frame_registers(profile, scene, inputs);
+  if (fs.regs.perspective) fs.rsqrt_seed = make_rsqrt_seed(profile);
+  fs.class_table = make_class_table(profile, inputs.tf, inputs.settings.step);
+  // A MIP or unshaded scene instantiates no shading unit: no reflectance maps.
+  if (scene.render.mode == ref::RenderMode::Shaded)
+    make_reflectance_maps(profile, inputs.shading, fs.rm_diffuse, fs.rm_specular);
+  return fs;
+}
+
+const char* to_string(Unit u) {
+  switch (u) {
+    case Unit::RaySetup: return "ray setup (geometry processor)";
+    case Unit::Stepping: return "stepping (geometry processor)";
+    case Unit::Interpolation: return "interpolation processor";
+    case Unit::Classification: return "classification table";
+    case Unit::ReflectanceMap: return "reflectance map";
+    case Unit::Shader: return "shader";
+    case Unit::Compositor: return "compositor";
+    case Unit::Output: return "output quantization";
+  }
+  return "?";
+}
+
+Divergence first_divergence(const RayTrace& a, const RayTrace& b) {
+  if (a.hit != b.hit || a.samples != b.samples || a.p0 != b.p0 || a.step != b.step)
+    return {true, 0, Unit::RaySetup};
+  const std::size_t n = std::min(a.trace.size(), b.trace.size());
+  for (std::size_t j = 0; j < n; ++j) {
+    const SampleTrace& x = a.trace[j];
+    const SampleTrace& y = b.trace[j];
+    const auto at = [j](Unit u) { return Divergence{true, j, u}; };
+    if (x.position != y.position) return at(Unit::Stepping);
+    if (x.value != y.value || x.gradient != y.gradient) return at(Unit::Interpolation);
+    if (x.class_address != y.class_address || x.alpha != y.alpha) return at(Unit::Classification);
+    if (x.diffuse != y.diffuse || x.specular != y.specular) return at(Unit::ReflectanceMap);
+    if (x.shaded != y.shaded) return at(Unit::Shader);
+    if (x.accumulator != y.accumulator) return at(Unit::Compositor);
+  }
+  if (a.trace.size() != b.trace.size()) return {true, n, Unit::Compositor};  // ERT differs
+  if (a.out != b.out) return {true, 0, Unit::Output};
+  return {};
+}
+
+std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory& memory, int px,
+                                         int py, RayTrace* trace, std::uint64_t* samples) {
+  const PrecisionProfile& p = fs.profile;
+  const BtRay ray = bt_ray_setup(fs, px, py);
+  if (trace) {
+    *trace = RayTrace{};
+    trace->hit = ray.hit;
+    trace->samples = ray.n;
+    trace->p0 = ray.p0;
+    trace->step = ray.s;
+  }
+  std::uint64_t taken = 0;
+  std::array<std::uint32_t, 4> out{0, 0, 0, 0};
+  if (ray.hit) {
+    const bool mip = fs.regs.mode == ref::RenderMode::Mip;
+    const bool shaded = fs.regs.mode == ref::RenderMode::Shaded;
+    BtAccumulator acc;
+    double peak = 0.0;
+    std::array<double, 3> pos = ray.p0;
+    for (std::uint64_t j = 0; j < ray.n; ++j) {
+      if (j > 0) pos = bt_step(pos, ray.s);
+      ++taken;
+      const BtSample s = bt_interpolate(p, fs.regs, memory, pos);
+      SampleTrace st;
+      st.position = pos;
+      st.value = s.value;
+      st.gradient = s.g;
+      if (mip) {
+        peak = bt_mip_max(peak, s.value);
+        st.accumulator[0] = peak;
+        if (trace) trace->trace.push_back(st);
+        continue;
+      }
+      const ClassEntry& e = bt_classify(fs, s.value);
+      st.class_address = bt_class_address(p, s.value);
+      st.alpha = bt_alpha(p, e);
+      bool stop = false;
+      if (st.alpha > 0.0) {
+        const BtReflect r = shaded ? bt_reflectance(fs, s.g) : BtReflect{};
+        st.diffuse = r.D;
+        st.specular = r.S;
+        st.shaded = bt_shade(p, e, r, shaded);
+        bt_composite(p, acc, st.shaded, st.alpha);
+        stop = bt_ert(fs, acc);
+      }
+      st.accumulator = {acc.C[0], acc.C[1], acc.C[2], acc.A};
+      if (trace) trace->trace.push_back(st);
+      if (stop) break;
+    }
+    out = bt_output(p, mip ? bt_mip_pixel(fs, peak) : acc);
+  }
+  if (trace) trace->out = out;
+  if (samples) *samples = taken;
+  return out;
+}
+
+ref::QuantImage bt_render_image(const FrameSetup& fs, const VoxelMemory& memory, int threads,
+                                ref::FrameStats* stats) {
+  ref::QuantImage img(fs.regs.width, fs.regs.height, fs.profile.out_bits);
+  std::vector<std::uint64_t> row_samples(static_cast<std::size_t>(img.height), 0);
+  ref::parallel_for(
+      img.height,
+      [&](int y) {
+        for (int x = 0; x < img.width; ++x) {
+          std::uint64_t n = 0;
+          img.at(x, y) = bt_cast_ray(fs, memory, x, y, nullptr, &n);
+          row_samples[static_cast<std::size_t>(y)] += n;
+        }
+      },
+      threads);
+  if (stats) {
+    *stats = ref::FrameStats{};
+    stats->rays = static_cast<std::uint64_t>(img.width) * static_cast<std::uint64_t>(img.height);
+    for (std::uint64_t n : row_samples) stats->samples += n;
+  }
+  return img;
+}
+
+}  // namespace voxcast::bittrue

@@ -1,0 +1,185 @@
+// Host set-up of the geometry processor and the voxel memory (docs/pipeline.md
+// §0, §1.2, §3.3-3.4): doubles from the float reference's camera and volume,
+// quantized to the raw integers the hls engine and the bit-true model load.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <glm/geometric.hpp>
+#include <string>
+
+#include "refmodel/bittrue/frame_setup.hpp"
+#include "refmodel/bittrue/quantize.hpp"
+#include "refmodel/error.hpp"
+
+namespace voxcast::bittrue {
+
+// Raw of Q_RND(x, F) = floor(x·2^F + 1/2), ties towards +inf. Exact for every
+// finite x with |x·2^F| < 2^52: the scaling is a power of two, floor is exact
+// and y - floor(y) is exact, so no addition rounds (quantize.hpp, q_rnd). Above
+// 2^52 every double is an integer and the result is x·2^F itself; beyond 2^62
+// (or a non-finite x) it throws.
+Raw quantize_rnd(double x, int frac_bits) {
+  const double y = std::ldexp(x, frac_bits);
+  if (!std::isfinite(y) || std::fabs(y) >= 0x1p62)
+    throw Error("quantize_rnd: " + std::to_string(x) + " at " + std::to_string(frac_bits) +
+                " fraction bits does not fit a 64-bit register");
+  const double t = std::floor(y);
+  return static_cast<Raw>(y - t >= 0.5 ? t + 1.0 : t);
+}
+
+namespace {
+
+using ref::Vec3;
+
+Raw3 quantize3(const Vec3& v, int frac_bits) {
+  return {quantize_rnd(v.x, frac_bits), quantize_rnd(v.y, frac_bits), quantize_rnd(v.z, frac_bits)};
+}
+
+void check_profile(const PrecisionProfile& p) {
+  if (p.rsqrt_seed_bits > p.dir_frac_bits)
+    throw Error("precision.rsqrt_seed_bits = " + std::to_string(p.rsqrt_seed_bits) +
+                " exceeds precision.dir_frac_bits = " + std::to_string(p.dir_frac_bits) +
+                " (docs/pipeline.md §0)");
+  if (p.addr_bits + p.pos_frac_bits + p.t_frac_bits > 49)
+    throw Error("precision.addr_bits + pos_frac_bits + t_frac_bits = " +
+                std::to_string(p.addr_bits + p.pos_frac_bits + p.t_frac_bits) +
+                " exceeds 49 (docs/pipeline.md §0)");
+}
+
+// The origin format fixed<a+4+pf, a+4>: values in [-2^(a+3), 2^(a+3)).
+void check_origin(const PrecisionProfile& p, const Raw3& o, const char* what) {
+  const Raw limit = Raw{1} << (p.addr_bits + 3 + p.pos_frac_bits);
+  for (Raw v : o)
+    if (v < -limit || v >= limit)
+      throw Error(std::string("camera: the ray origin (") + what +
+                  ") lies outside the geometry processor's origin register range of +-" +
+                  std::to_string(1 << (p.addr_bits + 3)) +
+                  " voxels per axis (docs/pipeline.md §0); move camera.eye closer");
+}
+
+}  // namespace
+
+FrameRegisters make_frame_registers(const PrecisionProfile& p,
+                                    [[maybe_unused]] const ref::Scene& scene,
+                                    const ref::RenderInputs& in) {
+  check_profile(p);
+  const int pf = p.pos_frac_bits, df = p.dir_frac_bits;
+  const ref::CameraFrame& cam = in.camera;
+  const ref::RenderVolume& rv = in.volume;
+  const Vec3 ws = rv.world_scale;
+  const ref::Volume& volume = *rv.volume;
+
+  FrameRegisters r;
+  r.perspective = cam.projection == ref::Projection::Perspective;
+  r.width = cam.width;
+  r.height = cam.height;
+  r.mode = in.settings.mode;
+
+  // Image-plane coordinates of pixel (0,0)'s centre and the per-pixel increments,
+  // as ref::primary_ray computes them.
+  const double u0 = (1.0 / cam.width - 1.0) * cam.half_width;
+  const double v0 = (1.0 - 1.0 / cam.height) * cam.half_height;
+  const double du = 2.0 * cam.half_width / cam.width;
+  const double dv = -2.0 * cam.half_height / cam.height;
+  const int corners[4][2] = {
+      {0, 0}, {cam.width - 1, 0}, {0, cam.height - 1}, {cam.width - 1, cam.height - 1}};
+
+  if (r.perspective) {
+    const Vec3 d00 = cam.forward + u0 * cam.right + v0 * cam.up;
+    const double M = glm::length(d00);
+    r.A = quantize3(d00 / M, df);
+    r.B = quantize3(du * cam.right / M, df);
+    r.C = quantize3(dv * cam.up / M, df);
+    r.E = quantize3(cam.eye / ws, pf);
+    check_origin(p, r.E, "camera.eye");
+    // |d| < 2 at every pixel: d·d is convex in (px, py), so the corners bound it.
+    for (const auto& c : corners) {
+      Raw n2 = 0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const Raw d = r.A[k] + c[0] * r.B[k] + c[1] * r.C[k];
+        n2 += d * d;
+      }
+      if (n2 >= (Raw{4} << (2 * df)))
+        throw Error("camera: precision.dir_frac_bits = " + std::to_string(df) +
+                    " is too narrow for a " + std::to_string(cam.width) + "x" +
+                    std::to_string(cam.height) + " image (pixel directions overflow)");
+    }
+  } else {
+    r.O = quantize3((cam.eye + u0 * cam.right + v0 * cam.up) / ws, pf);
+    r.P = quantize3(du * cam.right / ws, pf);
+    r.R = quantize3(dv * cam.up / ws, pf);
+    r.U = quantize3(cam.forward, df);
+    for (const auto& c : corners) {
+      Raw3 o{};
+      for (std::size_t k = 0; k < 3; ++k) o[k] = r.O[k] + c[0] * r.P[k] + c[1] * r.R[k];
+      check_origin(p, o, "the view plane through camera.eye");
+    }
+  }
+  r.K = quantize3(in.settings.step / ws, df);
+  r.IS = quantize3(1.0 / ws, df);
+
+  for (std::size_t k = 0; k < 3; ++k) {
+    r.dims[k] = volume.dims[k];
+    if (volume.dims[k] > (1 << p.addr_bits))
+      throw Error("precision.addr_bits = " + std::to_string(p.addr_bits) + " cannot address " +
+                  std::to_string(volume.dims[k]) + " voxels along an axis");
+    r.LO[k] = static_cast<int>(rv.index_box.lo[static_cast<int>(k)]);
+    r.HI[k] = static_cast<int>(rv.index_box.hi[static_cast<int>(k)]);
+  }
+  r.RM = quantize_rnd(1.0 / volume.max_stored(), df);
+  r.ert_enabled = in.settings.ert_threshold < 1.0;
+  r.ert_threshold = quantize_rnd(std::min(in.settings.ert_threshold, 1.0), p.acc_bits);
+  return r;
+}
+
+std::vector<Raw> make_rsqrt_seed(const PrecisionProfile& p) {
+  check_profile(p);
+  const int sb = p.rsqrt_seed_bits;
+  std::vector<Raw> seed(std::size_t{1} << sb, 0);
+  // Entries below 2^(sb-2) are never addressed (m >= 1/4) and stay 0 (§1.2).
+  for (std::size_t i = std::size_t{1} << (sb - 2); i < seed.size(); ++i)
+    seed[i] = quantize_rnd(1.0 / std::sqrt(std::ldexp(static_cast<double>(i) + 0.5, -sb)),
+                           p.dir_frac_bits);
+  return seed;
+}
+
+VoxelMemory make_voxel_memory(const PrecisionProfile& p, const ref::Volume& volume,
+                              const ref::GradientField& gradients) {
+  VoxelMemory mem;
+  mem.dims = volume.dims;
+  for (int k = 0; k < 3; ++k)
+    if (volume.dims[static_cast<std::size_t>(k)] > (1 << p.addr_bits))
+      throw Error("precision.addr_bits = " + std::to_string(p.addr_bits) + " cannot address " +
+                  std::to_string(volume.dims[static_cast<std::size_t>(k)]) +
+                  " voxels along an axis");
+  const int hx = (volume.dims[0] + 1) / 2, hy = (volume.dims[1] + 1) / 2,
+            hz = (volume.dims[2] + 1) / 2;
+  const std::size_t words =
+      static_cast<std::size_t>(hx) * static_cast<std::size_t>(hy) * static_cast<std::size_t>(hz);
+  for (auto& bank : mem.banks) bank.assign(words, VoxelWord{});  // padding words are zero
+  const std::uint32_t vmax = (std::uint32_t{1} << p.value_bits) - 1u;
+  const Raw gmax = (Raw{1} << (p.gradient_bits - 1)) - 1, gmin = -(Raw{1} << (p.gradient_bits - 1));
+  for (int z = 0; z < volume.dims[2]; ++z)
+    for (int y = 0; y < volume.dims[1]; ++y)
+      for (int x = 0; x < volume.dims[0]; ++x) {
+        const std::size_t i = volume.index(x, y, z);
+        const int bank = (x & 1) | (y & 1) << 1 | (z & 1) << 2;
+        const std::size_t word = static_cast<std::size_t>((x >> 1) + (y >> 1) * hx) +
+                                 static_cast<std::size_t>(z >> 1) * static_cast<std::size_t>(hx) *
+                                     static_cast<std::size_t>(hy);
+        VoxelWord& w = mem.banks[static_cast<std::size_t>(bank)][word];
+        if (volume.data[i] > vmax)
+          throw Error("precision.value_bits = " + std::to_string(p.value_bits) +
+                      " cannot hold the voxel value " + std::to_string(volume.data[i]) + " (" +
+                      volume.source + ")");
+        w.value = volume.data[i];
+        for (int c = 0; c < 3; ++c) {
+          const Raw g = quantize_rnd(gradients.g[i][c], p.gradient_frac_bits);
+          w.gradient[static_cast<std::size_t>(c)] =
+              static_cast<std::int32_t>(g < gmin ? gmin : (g > gmax ? gmax : g));
+        }
+      }
+  return mem;
+}
+
+}  // namespace voxcast::bittrue

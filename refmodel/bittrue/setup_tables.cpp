@@ -1,0 +1,75 @@
+// Host set-up of the classification table (docs/pipeline.md §4.2) and the two
+// reflectance maps (§5.4): computed in double from the float reference's own
+// functions, stored as the raw integers the card loads.
+#include <cmath>
+#include <cstddef>
+#include <glm/geometric.hpp>
+
+#include "refmodel/bittrue/frame_setup.hpp"
+#include "refmodel/bittrue/quantize.hpp"
+
+namespace voxcast::bittrue {
+
+namespace {
+
+// Raw integer of U(x, F) (an unsigned fraction of 1).
+std::uint32_t raw_u(double x, int F) { return static_cast<std::uint32_t>(to_raw(u_frac(x, F), F)); }
+
+}  // namespace
+
+std::vector<ClassEntry> make_class_table(const PrecisionProfile& profile,
+                                         const ref::TransferFunction& tf_stored, double step) {
+  const int n = 1 << profile.tf_addr_bits;
+  std::vector<ClassEntry> table(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    // Entry i: the transfer function at stored value i · 2^(vb - tf_addr_bits).
+    const double value =
+        std::ldexp(static_cast<double>(i), profile.value_bits - profile.tf_addr_bits);
+    const ref::Classified c = tf_stored.classify(value);
+    ClassEntry& e = table[static_cast<std::size_t>(i)];
+    e.r = raw_u(c.color.r, profile.color_bits);
+    e.g = raw_u(c.color.g, profile.color_bits);
+    e.b = raw_u(c.color.b, profile.color_bits);
+    // Opacity correction for the frame's step baked in; alpha >= 1 gives 1, which saturates.
+    e.alpha = raw_u(ref::opacity_correct(c.alpha, step), profile.alpha_bits);
+    e.ka = raw_u(c.ka, profile.k_bits);
+    e.kd = raw_u(c.kd, profile.k_bits);
+    e.ks = raw_u(c.ks, profile.k_bits);
+  }
+  return table;
+}
+
+void make_reflectance_maps(const PrecisionProfile& profile, const ref::ShadingSetup& shading,
+                           std::vector<std::uint32_t>& diffuse,
+                           std::vector<std::uint32_t>& specular) {
+  const int res = profile.rm_res;
+  const int rf = profile.rm_frac_bits;
+  const auto cells = static_cast<std::size_t>(6 * res * res);
+  const double hi = std::ldexp(1.0, profile.rm_int_bits) - std::ldexp(1.0, -rf);
+  auto store = [&](double x) {
+    return static_cast<std::uint32_t>(to_raw(sat(q_rnd(x, rf), 0.0, hi), rf));
+  };
+  diffuse.assign(cells, 0);
+  specular.assign(cells, 0);
+  std::size_t index = 0;
+  for (int face = 0; face < 6; ++face) {
+    // Face 2m + s: major axis m with sign +1 (s = 0) or -1 (s = 1); the other axes a < b.
+    const int m = face / 2;
+    const double sign = (face & 1) ? -1.0 : 1.0;
+    const int a = m == 0 ? 1 : 0;
+    const int b = m == 2 ? 1 : 2;
+    for (int iv = 0; iv < res; ++iv) {
+      for (int iu = 0; iu < res; ++iu, ++index) {
+        ref::Vec3 n(0.0);
+        n[m] = sign;
+        n[a] = (iu + 0.5) * 2.0 / res - 1.0;
+        n[b] = (iv + 0.5) * 2.0 / res - 1.0;
+        const ref::Reflectance r = ref::reflectance(shading, glm::normalize(n));
+        diffuse[index] = store(r.diffuse);
+        specular[index] = store(r.specular);
+      }
+    }
+  }
+}
+
+}  // namespace voxcast::bittrue

@@ -1,0 +1,131 @@
+#include "refmodel/bittrue/shading.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "refmodel/bittrue/quantize.hpp"
+
+namespace voxcast::bittrue {
+
+// --- §4 Classification -----------------------------------------------------------------
+
+int bt_class_address(const PrecisionProfile& p, double value) {
+  const double scaled = scale2(value, p.tf_addr_bits - p.value_bits);  // exact
+  const double last = std::ldexp(1.0, p.tf_addr_bits) - 1.0;
+  return static_cast<int>(sat(q_rnd(scaled, 0), 0.0, last));
+}
+
+const ClassEntry& bt_classify(const FrameSetup& fs, double value) {
+  return fs.class_table[static_cast<std::size_t>(bt_class_address(fs.profile, value))];
+}
+
+double bt_alpha(const PrecisionProfile& p, const ClassEntry& e) {
+  return from_raw(e.alpha, p.alpha_bits);
+}
+
+// --- §5 Reflectance map ----------------------------------------------------------------
+
+BtCell bt_rm_cell(const PrecisionProfile& p, const Raw3& IS, const std::array<double, 3>& g) {
+  const int sf = p.sample_frac_bits;
+  const int df = p.dir_frac_bits;
+  // §5.1: gw = Q_RND(g·IS, sf), N = -gw. The product has up to 59 magnitude bits at the
+  // profile's limits (more than a double holds), so it is formed on the raw integers:
+  // g_raw·IS_raw has sf + df fraction bits, and Q_RND to sf bits is floor((x + 2^(df-1)) / 2^df),
+  // an arithmetic shift.
+  std::array<std::int64_t, 3> n{}, mag{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::int64_t prod = to_raw(g[k], sf) * IS[k];
+    const std::int64_t gw = (prod + (std::int64_t{1} << (df - 1))) >> df;
+    n[k] = -gw;
+    mag[k] = std::llabs(n[k]);
+  }
+  // §5.3: major axis (ties to the lower axis), the other two axes a < b.
+  std::size_t m = 0;
+  if (mag[1] > mag[0]) m = 1;
+  if (mag[2] > mag[m]) m = 2;
+  BtCell cell;
+  if (mag[m] == 0) return cell;  // §5.2: N = 0
+  const std::size_t a = m == 0 ? 1 : 0;
+  const std::size_t b = m == 2 ? 1 : 2;
+  const std::int64_t res = p.rm_res;
+  auto cell_of = [&](std::size_t axis) {
+    const std::int64_t q = div_trunc0((n[axis] + mag[m]) * res, 2 * mag[m]);  // both >= 0: floor
+    return q > res - 1 ? res - 1 : q;
+  };
+  const std::int64_t face = 2 * static_cast<std::int64_t>(m) + (n[m] < 0 ? 1 : 0);
+  cell.valid = true;
+  cell.index = static_cast<int>(face * res * res + cell_of(b) * res + cell_of(a));
+  return cell;
+}
+
+BtReflect bt_reflectance(const FrameSetup& fs, const std::array<double, 3>& g) {
+  const BtCell cell = bt_rm_cell(fs.profile, fs.regs.IS, g);
+  BtReflect r;
+  if (!cell.valid) return r;
+  const auto i = static_cast<std::size_t>(cell.index);
+  r.D = from_raw(fs.rm_diffuse[i], fs.profile.rm_frac_bits);
+  r.S = from_raw(fs.rm_specular[i], fs.profile.rm_frac_bits);
+  return r;
+}
+
+// --- §6 Shader ---------------------------------------------------------------------------
+
+std::array<double, 3> bt_shade(const PrecisionProfile& p, const ClassEntry& e, const BtReflect& r,
+                               bool shaded) {
+  const int kb = p.k_bits, cb = p.color_bits, sb = p.shade_bits;
+  const std::array<double, 3> colour{from_raw(e.r, cb), from_raw(e.g, cb), from_raw(e.b, cb)};
+  std::array<double, 3> c{};
+  if (!shaded) {
+    for (std::size_t k = 0; k < 3; ++k) c[k] = u_frac(colour[k], sb);
+    return c;
+  }
+  // Every product and the sum are exact (at most 42 bits, §7's closing note).
+  const double sum = from_raw(e.ka, kb) + from_raw(e.kd, kb) * r.D + from_raw(e.ks, kb) * r.S;
+  const double intensity = q_rnd(sum, sb);
+  for (std::size_t k = 0; k < 3; ++k) c[k] = u_frac(colour[k] * intensity, sb);
+  return c;
+}
+
+// --- §7 Compositor -----------------------------------------------------------------------
+
+std::ostream& operator<<(std::ostream& os, const BtAccumulator& acc) {
+  return os << "BtAccumulator{C=(" << acc.C[0] << ", " << acc.C[1] << ", " << acc.C[2]
+            << "), A=" << acc.A << "}";
+}
+
+bool bt_composite(const PrecisionProfile& p, BtAccumulator& acc, const std::array<double, 3>& c,
+                  double alpha_c) {
+  if (alpha_c == 0.0) return false;
+  const int F = p.acc_bits;
+  const double w = q_rnd((1.0 - acc.A) * alpha_c, F);
+  for (std::size_t k = 0; k < 3; ++k) acc.C[k] = sat(acc.C[k] + q_rnd(w * c[k], F), 0.0, 1.0);
+  acc.A = sat(acc.A + w, 0.0, 1.0);
+  return true;
+}
+
+bool bt_ert(const FrameSetup& fs, const BtAccumulator& acc) {
+  return fs.regs.ert_enabled && acc.A >= from_raw(fs.regs.ert_threshold, fs.profile.acc_bits);
+}
+
+BtAccumulator bt_mip_pixel(const FrameSetup& fs, double M) {
+  const double rm = from_raw(fs.regs.RM, fs.profile.dir_frac_bits);
+  const double grey = sat(q_rnd(M * rm, fs.profile.acc_bits), 0.0, 1.0);
+  BtAccumulator px;
+  px.C = {grey, grey, grey};
+  px.A = 1.0;
+  return px;
+}
+
+// --- §8 Output ---------------------------------------------------------------------------
+
+std::uint32_t bt_output_channel(const PrecisionProfile& p, double x) {
+  const double top = std::ldexp(1.0, p.out_bits) - 1.0;
+  return static_cast<std::uint32_t>(sat(q_rnd(x * top, 0), 0.0, top));
+}
+
+std::array<std::uint32_t, 4> bt_output(const PrecisionProfile& p, const BtAccumulator& acc) {
+  return {bt_output_channel(p, acc.C[0]), bt_output_channel(p, acc.C[1]),
+          bt_output_channel(p, acc.C[2]), bt_output_channel(p, acc.A)};
+}
+
+}  // namespace voxcast::bittrue

@@ -1,0 +1,656 @@
+// Quantization and overflow of voxcast::hls::fixed / ufixed, checked two ways:
+//  1. exhaustively for W = 1..6, I = -2..W+2, every Q mode x every O mode (with N = 0, 1, 2),
+//     signed and unsigned targets, from every raw pattern of several wider/narrower source
+//     formats, from C integers and from a set of doubles (specials included), against an
+//     independent long-double reference written from the tables of
+//     /work/shared/fixed-point-semantics.md sections 2, 3 and 9;
+//  2. the worked examples of the specification as explicit assertions.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hls/fixed_point.hpp"
+
+namespace {
+
+using namespace voxcast::hls;
+
+// ---- Independent reference ----------------------------------------------------------------
+// Works on the exact value in long double (64-bit mantissa: every value below is exact) with
+// floorl / fmodl, not with the integer shifts and masks of the implementation.
+
+struct target_format {
+  int w;
+  int i;
+  bool s;
+  q_mode q;
+  o_mode o;
+  int n;
+};
+
+std::string describe(const target_format& t) {
+  static const char* const qn[] = {"RND", "RND_ZERO", "RND_MIN_INF", "RND_INF",
+                                   "RND_CONV", "TRN", "TRN_ZERO"};
+  static const char* const on[] = {"SAT", "SAT_ZERO", "SAT_SYM", "WRAP", "WRAP_SM"};
+  std::ostringstream os;
+  os << (t.s ? "fixed<" : "ufixed<") << t.w << "," << t.i << "," << qn[t.q] << "," << on[t.o]
+     << "," << t.n << ">";
+  return os.str();
+}
+
+// The canonical raw integer (sign-extended for signed targets) that converting the exact value
+// x into format t must give.
+std::int64_t reference_raw(long double x, const target_format& t) {
+  const long double q = std::ldexp(1.0L, t.i - t.w);  // LSB weight
+  const long double y = x / q;                         // exact: q is a power of two
+  const long double floor_y = std::floor(y);
+  const long double frac = y - floor_y;
+  // Section 2: floor, first dropped bit qb, sticky r, sign s of the source.
+  const bool qb = frac >= 0.5L;
+  const bool r = qb ? frac > 0.5L : frac > 0.0L;
+  const bool s = x < 0;
+  const bool lsb = std::fmod(floor_y, 2.0L) != 0;
+  bool inc = false;
+  switch (t.q) {
+    case TRN: inc = false; break;
+    case TRN_ZERO: inc = s && (qb || r); break;
+    case RND: inc = qb; break;
+    case RND_ZERO: inc = qb && (s || r); break;
+    case RND_MIN_INF: inc = qb && r; break;
+    case RND_INF: inc = qb && (!s || r); break;
+    case RND_CONV: inc = qb && (lsb || r); break;
+  }
+  const long double rounded = floor_y + (inc ? 1.0L : 0.0L);
+
+  // Section 3: overflow on the rounded value.
+  const long double two_w = std::ldexp(1.0L, t.w);
+  const long double max_v = t.s ? std::ldexp(1.0L, t.w - 1) - 1 : two_w - 1;
+  const long double min_v = t.s ? -std::ldexp(1.0L, t.w - 1) : 0.0L;
+  long double low = std::fmod(rounded, two_w);  // the low W bits, V = t mod 2^W
+  if (low < 0) low += two_w;
+  std::uint64_t v = static_cast<std::uint64_t>(low);
+  const std::uint64_t mask = (std::uint64_t{1} << t.w) - 1;
+  const std::uint64_t max_p = static_cast<std::uint64_t>(max_v);
+  const std::uint64_t min_p = t.s ? (std::uint64_t{1} << (t.w - 1)) : 0;  // MIN pattern
+  const bool neg = rounded < 0;
+  const bool ovf = rounded > max_v;
+  const bool unf = rounded < min_v;
+  auto set_bit = [](std::uint64_t p, int k, bool b) {
+    return b ? (p | (std::uint64_t{1} << k)) : (p & ~(std::uint64_t{1} << k));
+  };
+  auto get_bit = [](std::uint64_t p, int k) { return ((p >> k) & 1U) != 0; };
+
+  if (t.o == WRAP && t.n == 0) {
+    // plain wrap: V
+  } else if (t.o == SAT) {
+    if (ovf) v = max_p;
+    if (unf) v = min_p;
+  } else if (t.o == SAT_ZERO) {
+    if (ovf || unf) v = 0;
+  } else if (t.o == SAT_SYM) {
+    // -MAX; ap builds it as MIN | 1, which for W = 1 is -1 (range {-1, 0}).
+    const std::uint64_t neg_max = t.s ? (min_p | 1U) : 0;
+    if (ovf) {
+      v = max_p;
+    } else if (unf) {
+      v = neg_max;
+    } else if (t.s && t.w > 1 && rounded == min_v) {
+      v = neg_max;  // an exact MIN from a signed source becomes -MAX
+    }
+  } else if (t.o == WRAP) {
+    if (ovf || unf) {
+      if (t.s) {
+        v = set_bit(v, t.w - 1, neg);
+        for (int k = t.w - t.n; k <= t.w - 2; ++k) v = set_bit(v, k, !neg);
+      } else {
+        for (int k = t.w - t.n; k <= t.w - 1; ++k) v = set_bit(v, k, true);
+      }
+    }
+  } else {  // WRAP_SM
+    if (ovf || unf) {
+      const bool ro = get_bit(v, t.w - 1);
+      if (t.n == 0) {
+        // lD: bit W of the aligned unrounded source.
+        const bool ld = std::fmod(std::floor(std::ldexp(floor_y, -t.w)), 2.0L) != 0;
+        if (ld != ro) v = set_bit(~v & mask, t.w - 1, ld);
+      } else if (t.n == 1) {
+        if (neg != ro) v = ~v & mask;
+        v = set_bit(v, t.w - 1, neg);
+      } else {
+        if (get_bit(v, t.w - t.n) == neg) v = ~v & mask;
+        for (int k = t.w - t.n; k <= t.w - 2; ++k) v = set_bit(v, k, !neg);
+        v = set_bit(v, t.w - 1, neg);
+      }
+    }
+  }
+  v &= mask;
+  if (t.s && get_bit(v, t.w - 1)) return static_cast<std::int64_t>(v) - static_cast<std::int64_t>(two_w);
+  return static_cast<std::int64_t>(v);
+}
+
+// Section 9: a double is decoded as sign, exponent and mantissa; NaN and inf decode as
+// +-1.mant * 2^1024.
+long double exact_value_of(double d) {
+  if (std::isfinite(d)) return static_cast<long double>(d);
+  const auto b = std::bit_cast<std::uint64_t>(d);
+  const long double mant = 1.0L + std::ldexp(static_cast<long double>(b & ((1ULL << 52) - 1)), -52);
+  const long double v = std::ldexp(mant, 1024);
+  return (b >> 63) != 0 ? -v : v;
+}
+
+// ---- Sweep machinery ------------------------------------------------------------------------
+// Compile time is the constraint (thousands of target types): each target instantiates only a
+// few one-line conversion functions, stored as pointers; the loops, the reference and the
+// reporting are ordinary functions.
+
+using raw_conversion = std::int64_t (*)(std::int64_t);
+using double_conversion = std::int64_t (*)(double);
+
+struct source_format {
+  int w = 0;
+  int i = 0;
+  bool s = false;
+  raw_conversion convert = nullptr;  // raw pattern of the source -> raw of the target
+};
+
+struct target_case {
+  target_format t;
+  source_format sources[2];
+  raw_conversion from_int;  // C int -> target, nullptr if not swept
+  double_conversion from_double;
+};
+
+template <class T, class Src>
+std::int64_t convert_fixed(std::int64_t raw) {
+  const T t = Src::from_raw(static_cast<typename Src::raw_type>(raw));
+  return static_cast<std::int64_t>(t.raw());
+}
+template <class T>
+std::int64_t convert_int(std::int64_t v) {
+  const T t = static_cast<int>(v);
+  return static_cast<std::int64_t>(t.raw());
+}
+template <class T>
+std::int64_t convert_double(double d) {
+  const T t = d;
+  return static_cast<std::int64_t>(t.raw());
+}
+
+template <class Src>
+constexpr source_format describe_source(raw_conversion f) {
+  return {Src::width, Src::iwidth, Src::is_signed, f};
+}
+
+// Sources: every pattern of a signed <W+4, I+2> (2 dropped bits, 4x the range) and doubles
+// (run-time shift amounts, ties, specials) for every target. The sweep is bounded by compile
+// time (every target x source pair is its own instantiated conversion), so the sources whose
+// behaviour does not depend on Q are swept with the quantization modes that matter to them:
+// an unsigned <W+5, I+1> (4 dropped bits: sticky; top bit set without being negative) with
+// TRN, RND and TRN_ZERO (which must act as TRN for an unsigned source), and C ints (an exact
+// left shift, or a rounding one when I > W) with TRN and RND.
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+constexpr target_case make_case() {
+  using T = fixed_base<W, I, S, Q, O, N>;
+  using A = fixed<W + 4, I + 2>;
+  using B = ufixed<W + 5, I + 1>;
+  constexpr bool with_b = Q == TRN || Q == RND || Q == TRN_ZERO;
+  constexpr bool with_int = Q == TRN || Q == RND;
+  return {{W, I, S, Q, O, N},
+          {describe_source<A>(&convert_fixed<T, A>),
+           with_b ? describe_source<B>(&convert_fixed<T, B>) : source_format{}},
+          with_int ? &convert_int<T> : nullptr,
+          &convert_double<T>};
+}
+
+// All four overflow modes of the brief with every Q; the saturation-bit variants (WRAP with
+// N = 1, 2 and the signed-only WRAP_SM with N = 0, 1, 2) with a truncating and a rounding Q,
+// which is what their rules depend on (the sign and the rounding carry).
+template <int W, int I, bool S, q_mode Q>
+constexpr auto cases_for_q_mode() {
+  constexpr std::array basic = {make_case<W, I, S, Q, SAT, 0>(), make_case<W, I, S, Q, SAT_ZERO, 0>(),
+                                make_case<W, I, S, Q, SAT_SYM, 0>(), make_case<W, I, S, Q, WRAP, 0>()};
+  if constexpr (Q != TRN && Q != RND) {
+    return basic;
+  } else if constexpr (!S) {
+    constexpr int n2 = W >= 2 ? 2 : 1;  // N <= W
+    return std::array{basic[0], basic[1], basic[2], basic[3], make_case<W, I, S, Q, WRAP, 1>(),
+                      make_case<W, I, S, Q, WRAP, n2>()};
+  } else {
+    constexpr int n2 = W >= 2 ? 2 : 1;
+    return std::array{basic[0],
+                      basic[1],
+                      basic[2],
+                      basic[3],
+                      make_case<W, I, S, Q, WRAP, 1>(),
+                      make_case<W, I, S, Q, WRAP, n2>(),
+                      make_case<W, I, S, Q, WRAP_SM, 0>(),
+                      make_case<W, I, S, Q, WRAP_SM, 1>(),
+                      make_case<W, I, S, Q, WRAP_SM, n2>()};
+  }
+}
+
+template <int W, int I, bool S>
+void append_cases(std::vector<target_case>& cases) {
+  static constexpr auto rnd = cases_for_q_mode<W, I, S, RND>();
+  static constexpr auto rnd_zero = cases_for_q_mode<W, I, S, RND_ZERO>();
+  static constexpr auto rnd_min_inf = cases_for_q_mode<W, I, S, RND_MIN_INF>();
+  static constexpr auto rnd_inf = cases_for_q_mode<W, I, S, RND_INF>();
+  static constexpr auto rnd_conv = cases_for_q_mode<W, I, S, RND_CONV>();
+  static constexpr auto trn = cases_for_q_mode<W, I, S, TRN>();
+  static constexpr auto trn_zero = cases_for_q_mode<W, I, S, TRN_ZERO>();
+  for (const auto* table : {rnd.data(), rnd_zero.data(), rnd_min_inf.data(), rnd_inf.data(),
+                            rnd_conv.data(), trn_zero.data()}) {
+    cases.insert(cases.end(), table, table + 4);
+  }
+  cases.insert(cases.end(), rnd.begin() + 4, rnd.end());
+  cases.insert(cases.end(), trn.begin(), trn.end());
+}
+
+// I from -2 to W + 2.
+template <int W, bool S>
+std::vector<target_case> cases_for_width() {
+  std::vector<target_case> cases;
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    (append_cases<W, K - 2, S>(cases), ...);
+  }(std::make_integer_sequence<int, W + 5>{});
+  return cases;
+}
+
+struct sweep_stats {
+  std::uint64_t comparisons = 0;
+  std::uint64_t failures = 0;
+};
+
+const std::vector<double>& special_doubles() {
+  static const std::vector<double> values = [] {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> v = {0.0,
+                             -0.0,
+                             inf,
+                             -inf,
+                             nan,
+                             -nan,
+                             std::numeric_limits<double>::max(),
+                             -std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::min(),
+                             -std::numeric_limits<double>::min(),
+                             std::numeric_limits<double>::denorm_min(),
+                             -std::numeric_limits<double>::denorm_min(),
+                             1e300,
+                             -1e300,
+                             1e-300,
+                             -1e-300,
+                             0.1,
+                             -0.1,
+                             1.3,
+                             -1.3,
+                             8.99,
+                             -8.99};
+    for (int e = -70; e <= 70; ++e) {
+      v.push_back(std::ldexp(1.0, e));
+      v.push_back(-std::ldexp(1.0, e));
+      v.push_back(std::ldexp(1.0 + 0x1.0p-52, e));   // just above a power of two
+      v.push_back(-std::ldexp(2.0 - 0x1.0p-52, e));  // just below one, negative
+    }
+    std::mt19937_64 rng(0x5eedf1c5);
+    std::uniform_real_distribution<double> dist(-600.0, 600.0);
+    for (int k = 0; k < 200; ++k) v.push_back(dist(rng));
+    return v;
+  }();
+  return values;
+}
+
+void run_case(const target_case& c, sweep_stats& st) {
+  // Every raw pattern of both fixed sources.
+  for (const source_format& src : c.sources) {
+    if (src.convert == nullptr) continue;
+    const std::int64_t lo = src.s ? -(std::int64_t{1} << (src.w - 1)) : 0;
+    const std::int64_t hi =
+        src.s ? (std::int64_t{1} << (src.w - 1)) - 1 : (std::int64_t{1} << src.w) - 1;
+    for (std::int64_t raw = lo; raw <= hi; ++raw) {
+      const long double exact = std::ldexp(static_cast<long double>(raw), src.i - src.w);
+      const std::int64_t want = reference_raw(exact, c.t);
+      const std::int64_t got = src.convert(raw);
+      ++st.comparisons;
+      if (got != want && ++st.failures <= 20) {
+        ADD_FAILURE() << describe(c.t) << " from " << (src.s ? "fixed<" : "ufixed<") << src.w
+                      << "," << src.i << "> raw " << raw << ": raw " << got << ", reference "
+                      << want;
+      }
+    }
+  }
+  // C ints.
+  if (c.from_int != nullptr) {
+    for (int k = -300; k <= 300; ++k) {
+      const std::int64_t want = reference_raw(static_cast<long double>(k), c.t);
+      const std::int64_t got = c.from_int(k);
+      ++st.comparisons;
+      if (got != want && ++st.failures <= 20) {
+        ADD_FAILURE() << describe(c.t) << " from int " << k << ": raw " << got
+                      << ", reference " << want;
+      }
+    }
+  }
+  // Doubles: every multiple of q/8 over four times the range (ties, stickies, carries and
+  // overflow), plus the specials.
+  auto check_double = [&](double d) {
+    const std::int64_t want = reference_raw(exact_value_of(d), c.t);
+    const std::int64_t got = c.from_double(d);
+    ++st.comparisons;
+    if (got != want && ++st.failures <= 20) {
+      ADD_FAILURE() << describe(c.t) << " from double " << std::hexfloat << d << std::defaultfloat
+                    << ": raw " << got << ", reference " << want;
+    }
+  };
+  const double q8 = std::ldexp(1.0, c.t.i - c.t.w - 3);
+  const int span = 16 << c.t.w;
+  for (int k = -span; k <= span; ++k) check_double(k * q8);
+  for (const double d : special_doubles()) check_double(d);
+}
+
+template <int W, bool S>
+void run_sweep() {
+  const std::vector<target_case> cases = cases_for_width<W, S>();
+  sweep_stats st;
+  for (const target_case& c : cases) run_case(c, st);
+  EXPECT_EQ(st.failures, 0U) << "of " << st.comparisons << " comparisons";
+  EXPECT_GT(st.comparisons, 0U);
+  ::testing::Test::RecordProperty("target_types", std::to_string(cases.size()));
+  ::testing::Test::RecordProperty("comparisons", std::to_string(st.comparisons));
+  std::printf("[   INFO   ] %s W=%d: %zu target types, %llu conversions compared\n",
+              S ? "signed" : "unsigned", W, cases.size(),
+              static_cast<unsigned long long>(st.comparisons));
+}
+
+TEST(FixedQuantizeExhaustive, SignedW1) { run_sweep<1, true>(); }
+TEST(FixedQuantizeExhaustive, SignedW2) { run_sweep<2, true>(); }
+TEST(FixedQuantizeExhaustive, SignedW3) { run_sweep<3, true>(); }
+TEST(FixedQuantizeExhaustive, SignedW4) { run_sweep<4, true>(); }
+TEST(FixedQuantizeExhaustive, SignedW5) { run_sweep<5, true>(); }
+TEST(FixedQuantizeExhaustive, SignedW6) { run_sweep<6, true>(); }
+TEST(FixedQuantizeExhaustive, UnsignedW1) { run_sweep<1, false>(); }
+TEST(FixedQuantizeExhaustive, UnsignedW2) { run_sweep<2, false>(); }
+TEST(FixedQuantizeExhaustive, UnsignedW3) { run_sweep<3, false>(); }
+TEST(FixedQuantizeExhaustive, UnsignedW4) { run_sweep<4, false>(); }
+TEST(FixedQuantizeExhaustive, UnsignedW5) { run_sweep<5, false>(); }
+TEST(FixedQuantizeExhaustive, UnsignedW6) { run_sweep<6, false>(); }
+
+// Other C integer and ap_int sources into a few targets (each source type is its own
+// converting constructor).
+template <class T>
+void expect_integer_sources() {
+  const target_format t{T::width, T::iwidth, T::is_signed, T::qmode, T::omode, T::nbits};
+  auto expect = [&](auto value, long double exact) {
+    const T got = value;
+    EXPECT_EQ(static_cast<std::int64_t>(got.raw()), reference_raw(exact, t))
+        << describe(t) << " from " << static_cast<double>(exact);
+  };
+  for (int k = -200; k <= 200; ++k) {
+    expect(static_cast<long long>(k) * 1000, static_cast<long double>(k) * 1000);
+    expect(static_cast<short>(k), static_cast<long double>(k));
+    expect(static_cast<signed char>(k / 2), static_cast<long double>(k / 2));
+    expect(int_t<10>(k), static_cast<long double>(k));
+  }
+  for (unsigned k = 0; k <= 400; ++k) {
+    expect(k, static_cast<long double>(k));
+    expect(static_cast<unsigned long long>(k) << 40, std::ldexp(static_cast<long double>(k), 40));
+    expect(static_cast<unsigned char>(k), static_cast<long double>(static_cast<unsigned char>(k)));
+    expect(uint_t<9>(k), static_cast<long double>(k & 511));
+  }
+  expect(true, 1.0L);
+  expect(false, 0.0L);
+  expect(std::numeric_limits<long long>::min(),
+         static_cast<long double>(std::numeric_limits<long long>::min()));
+  expect(std::numeric_limits<unsigned long long>::max(),
+         static_cast<long double>(std::numeric_limits<unsigned long long>::max()));
+}
+TEST(FixedQuantizeExhaustive, IntegerSources) {
+  expect_integer_sources<fixed<6, 3, RND, SAT>>();
+  expect_integer_sources<fixed<6, 8, RND_CONV, SAT_SYM>>();
+  expect_integer_sources<fixed<5, 7, TRN_ZERO, WRAP>>();
+  expect_integer_sources<ufixed<6, 4, RND_INF, SAT>>();
+  expect_integer_sources<ufixed<4, 6, RND, WRAP, 2>>();
+  expect_integer_sources<fixed<6, 6, TRN, WRAP_SM>>();
+  expect_integer_sources<fixed<12, 30, RND_MIN_INF, SAT_ZERO>>();
+}
+
+// The reference itself, on the spec's own numbers, so that a wrong reference cannot hide a
+// wrong implementation.
+TEST(FixedQuantizeReference, AgreesWithSpecExamples) {
+  const target_format rnd_sat{4, 2, true, RND, SAT, 0};
+  EXPECT_EQ(reference_raw(1.96875L, rnd_sat), 7);  // 1.75
+  const target_format rnd_wrap{4, 2, true, RND, WRAP, 0};
+  EXPECT_EQ(reference_raw(1.96875L, rnd_wrap), -8);  // -2.0
+  const target_format wrap_10_4{10, 4, true, TRN, WRAP, 0};
+  EXPECT_EQ(reference_raw(static_cast<long double>(8.99), wrap_10_4), -449);  // -7.015625
+  const target_format u_wrap2{4, 4, false, RND, WRAP, 2};
+  EXPECT_EQ(reference_raw(-9.0L, u_wrap2), 15);
+}
+
+// ---- Worked examples of the specification -------------------------------------------------
+
+// Section 1: ranges of unusual formats.
+TEST(FixedSpecExamples, Section1Ranges) {
+  using a = fixed<4, -2>;  // multiples of 1/64 in [-1/8, 7/64]
+  EXPECT_EQ((fixed<4, -2, TRN, SAT>(1.0).to_double()), 7.0 / 64);
+  EXPECT_EQ((fixed<4, -2, TRN, SAT>(-1.0).to_double()), -1.0 / 8);
+  EXPECT_EQ(a::from_raw(1).to_double(), 1.0 / 64);
+  using b = fixed<4, 8>;  // multiples of 16 in [-128, 112]
+  EXPECT_EQ((fixed<4, 8, TRN, SAT>(1000).to_double()), 112.0);
+  EXPECT_EQ((fixed<4, 8, TRN, SAT>(-1000).to_double()), -128.0);
+  EXPECT_EQ(b::from_raw(1).to_double(), 16.0);
+  EXPECT_EQ(b(37.0).to_double(), 32.0);
+  EXPECT_EQ((fixed<8, 4>::width), 8);
+  EXPECT_EQ((fixed<8, 4>::iwidth), 4);
+  EXPECT_EQ((fixed<8, 4, RND, SAT>::qmode), RND);
+  EXPECT_EQ((fixed<8, 4, RND, SAT>::omode), SAT);
+  // Same enumerator order as ap_q_mode / ap_o_mode.
+  static_assert(RND == 0 && RND_ZERO == 1 && RND_MIN_INF == 2 && RND_INF == 3 && RND_CONV == 4 &&
+                TRN == 5 && TRN_ZERO == 6);
+  static_assert(SAT == 0 && SAT_ZERO == 1 && SAT_SYM == 2 && WRAP == 3 && WRAP_SM == 4);
+}
+
+// Section 2: target ap_fixed<3,2,Q,AP_SAT> (q = 0.5), columns in q_mode order.
+template <q_mode Q>
+double to_q3(double x) {
+  return fixed<3, 2, Q, SAT>(x).to_double();
+}
+TEST(FixedSpecExamples, Section2QuantizationTable) {
+  struct row {
+    double x;
+    double expect[7];  // RND, RND_ZERO, RND_MIN_INF, RND_INF, RND_CONV, TRN, TRN_ZERO
+  };
+  const row rows[] = {
+      {1.25, {1.5, 1.0, 1.0, 1.5, 1.0, 1.0, 1.0}},
+      {-1.25, {-1.0, -1.0, -1.5, -1.5, -1.0, -1.5, -1.0}},
+      {0.75, {1.0, 0.5, 0.5, 1.0, 1.0, 0.5, 0.5}},
+      {-0.75, {-0.5, -0.5, -1.0, -1.0, -1.0, -1.0, -0.5}},
+      {1.3, {1.5, 1.5, 1.5, 1.5, 1.5, 1.0, 1.0}},
+      {-1.3, {-1.5, -1.5, -1.5, -1.5, -1.5, -1.5, -1.0}},
+  };
+  for (const row& r : rows) {
+    SCOPED_TRACE(r.x);
+    EXPECT_EQ(to_q3<RND>(r.x), r.expect[0]);
+    EXPECT_EQ(to_q3<RND_ZERO>(r.x), r.expect[1]);
+    EXPECT_EQ(to_q3<RND_MIN_INF>(r.x), r.expect[2]);
+    EXPECT_EQ(to_q3<RND_INF>(r.x), r.expect[3]);
+    EXPECT_EQ(to_q3<RND_CONV>(r.x), r.expect[4]);
+    EXPECT_EQ(to_q3<TRN>(r.x), r.expect[5]);
+    EXPECT_EQ(to_q3<TRN_ZERO>(r.x), r.expect[6]);
+  }
+  // UG1399's examples.
+  EXPECT_EQ((fixed<3, 2, RND, SAT>(1.25).to_double()), 1.5);
+  EXPECT_EQ((fixed<3, 2, RND, SAT>(-1.25).to_double()), -1.0);
+  EXPECT_EQ((fixed<3, 2, RND_ZERO, SAT>(1.25).to_double()), 1.0);
+  EXPECT_EQ((fixed<3, 2, RND_ZERO, SAT>(-1.25).to_double()), -1.0);
+  EXPECT_EQ((fixed<3, 2, RND_MIN_INF, SAT>(-1.25).to_double()), -1.5);
+  // The rounding carry overflows, then O applies.
+  EXPECT_EQ((fixed<4, 2, RND, SAT>(1.96875)), 1.75);
+  EXPECT_EQ((fixed<4, 2, RND, WRAP>(1.96875)), -2.0);
+  // Ties use the sign of the source: the same tie from a fixed source.
+  EXPECT_EQ((fixed<3, 2, RND_ZERO, SAT>(fixed<8, 4>(-0.75)).to_double()), -0.5);
+  EXPECT_EQ((fixed<3, 2, RND_INF, SAT>(fixed<8, 4>(-0.75)).to_double()), -1.0);
+  // TRN_ZERO from an unsigned source is TRN (both floor a non-negative value).
+  EXPECT_EQ((ufixed<3, 2, TRN_ZERO>(ufixed<8, 4>(1.75)).to_double()), 1.5);
+}
+
+// Section 3: ap_fixed<4,4,AP_RND,O,N> (range -8..7) and ap_ufixed<4,4,AP_RND,O,N>.
+template <o_mode O, int N = 0>
+double s4(int x) {
+  const double from_int = fixed<4, 4, RND, O, N>(x).to_double();
+  EXPECT_EQ(from_int, (fixed<4, 4, RND, O, N>(static_cast<double>(x)).to_double())) << x;
+  return from_int;
+}
+template <o_mode O, int N = 0>
+double u4(int x) {
+  const double from_int = ufixed<4, 4, RND, O, N>(x).to_double();
+  EXPECT_EQ(from_int, (ufixed<4, 4, RND, O, N>(static_cast<double>(x)).to_double())) << x;
+  return from_int;
+}
+TEST(FixedSpecExamples, Section3OverflowTable) {
+  struct row {
+    int x;
+    double expect[13];
+  };
+  // SAT, SAT_ZERO, SAT_SYM, WRAP, WRAP N=1, WRAP N=2, WRAP_SM, WRAP_SM N=1, WRAP_SM N=2,
+  // u SAT, u SAT_SYM, u WRAP, u WRAP N=2
+  const row rows[] = {
+      {19, {7, 0, 7, 3, 3, 7, -4, 3, 4, 15, 15, 3, 15}},
+      {-19, {-8, 0, -7, -3, -3, -7, 2, -3, -6, 0, 0, 13, 13}},
+      {8, {7, 0, 7, -8, 0, 4, 7, 7, 7, 8, 8, 8, 8}},
+      {-9, {-8, 0, -7, 7, -1, -5, -8, -8, -8, 0, 0, 7, 15}},
+  };
+  for (const row& r : rows) {
+    SCOPED_TRACE(r.x);
+    EXPECT_EQ(s4<SAT>(r.x), r.expect[0]);
+    EXPECT_EQ(s4<SAT_ZERO>(r.x), r.expect[1]);
+    EXPECT_EQ(s4<SAT_SYM>(r.x), r.expect[2]);
+    EXPECT_EQ(s4<WRAP>(r.x), r.expect[3]);
+    EXPECT_EQ((s4<WRAP, 1>(r.x)), r.expect[4]);
+    EXPECT_EQ((s4<WRAP, 2>(r.x)), r.expect[5]);
+    EXPECT_EQ(s4<WRAP_SM>(r.x), r.expect[6]);
+    EXPECT_EQ((s4<WRAP_SM, 1>(r.x)), r.expect[7]);
+    EXPECT_EQ((s4<WRAP_SM, 2>(r.x)), r.expect[8]);
+    EXPECT_EQ(u4<SAT>(r.x), r.expect[9]);
+    EXPECT_EQ(u4<SAT_SYM>(r.x), r.expect[10]);
+    EXPECT_EQ(u4<WRAP>(r.x), r.expect[11]);
+    EXPECT_EQ((u4<WRAP, 2>(r.x)), r.expect[12]);
+  }
+  EXPECT_EQ((ufixed<4, 4, RND, WRAP, 2>(-9).to_double()), 15.0);
+  // SAT_SYM: an exact MIN becomes -MAX; W = 1 keeps -1.
+  EXPECT_EQ((fixed<4, 4, TRN, SAT_SYM>(-8).to_double()), -7.0);
+  EXPECT_EQ((fixed<1, 1, TRN, SAT_SYM>(-1).to_double()), -1.0);
+  EXPECT_EQ((fixed<1, 1, TRN, SAT_SYM>(-5).to_double()), -1.0);  // ap: MIN | 1 == MIN
+  // ... also from another fixed type holding MIN, but a same-type copy is a bit copy.
+  const fixed<4, 4> min4 = -8;
+  EXPECT_EQ((fixed<4, 4, TRN, SAT_SYM>(min4).to_double()), -7.0);
+  const auto sym_min = fixed<4, 4, TRN, SAT_SYM>(3) << 3;  // shifts bypass overflow
+  const fixed<4, 4, TRN, SAT_SYM> copy = sym_min;
+  EXPECT_EQ(copy.to_double(), -8.0);
+}
+
+// Section 4: quantization on conversion only; one per statement; named intermediates round
+// again.
+TEST(FixedSpecExamples, Section4WhenQuantizationApplies) {
+  // WRAP of 8.99 into <10,4>: floor to 8.984375 = raw 575, wraps to 575 - 1024 = -449.
+  EXPECT_EQ((fixed<10, 4>(8.99).to_double()), -7.015625);
+  EXPECT_EQ((fixed<10, 4>(8.99)).raw(), -449);
+
+  using T = fixed<6, 3, RND>;  // LSB 1/8
+  const fixed<8, 4> a = 1.4375, b = 1.4375, c = 0.0625;
+  const T once = a * b + c;  // 2.12890625 -> 2.125
+  const T p = a * b;         // 2.06640625 -> 2.125
+  const T twice = p + c;     // 2.1875 -> 2.25 (tie rounds up)
+  EXPECT_EQ(once.to_double(), 2.125);
+  EXPECT_EQ(twice.to_double(), 2.25);
+  // Compound assignment computes the exact result and quantizes once.
+  T acc = 1.0;
+  acc += fixed<8, 4>(0.1875);  // 1.1875 -> 1.25 (RND)
+  EXPECT_EQ(acc.to_double(), 1.25);
+  // Binary operators are exact: no Q/O of the operands applies.
+  const fixed<4, 4, TRN, SAT> s7 = 7;
+  const auto sum = s7 + s7;
+  static_assert(std::is_same_v<decltype(sum), const fixed<5, 5>>);
+  EXPECT_EQ(sum.to_double(), 14.0);
+}
+
+// Section 9: double -> fixed, specials.
+template <o_mode O>
+void expect_specials() {
+  using T = fixed<8, 4, TRN, O>;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double max = 127.0 / 16, min = -8.0, nmax = -127.0 / 16;
+  const bool wrap = O == WRAP;
+  const bool zero = O == SAT_ZERO;
+  EXPECT_EQ(T(nan).to_double(), wrap || zero ? 0.0 : max);
+  EXPECT_EQ(T(-nan).to_double(), wrap || zero ? 0.0 : (O == SAT_SYM ? nmax : min));
+  EXPECT_EQ(T(inf).to_double(), wrap || zero ? 0.0 : max);
+  EXPECT_EQ(T(-inf).to_double(), wrap || zero ? 0.0 : (O == SAT_SYM ? nmax : min));
+  const double huge = std::ldexp(1.0, 4 + 53);  // abs(d) >= 2^(I+53): every kept bit is 0
+  EXPECT_EQ(T(huge).to_double(), wrap || zero ? 0.0 : max);
+  EXPECT_EQ(T(-huge).to_double(), wrap || zero ? 0.0 : (O == SAT_SYM ? nmax : min));
+  EXPECT_EQ(T(-std::numeric_limits<double>::denorm_min()).to_double(), -1.0 / 16);
+  EXPECT_EQ(T(-0.0).raw(), 0);
+}
+TEST(FixedSpecExamples, Section9DoubleSpecials) {
+  expect_specials<WRAP>();
+  expect_specials<SAT>();
+  expect_specials<SAT_SYM>();
+  expect_specials<SAT_ZERO>();
+  // Single rounding from double: 1.3 is just below 1.3, RND into <8,4> gives 1.3125.
+  EXPECT_EQ((fixed<8, 4, RND>(1.3).to_double()), 1.3125);
+  // float goes through double exactly.
+  EXPECT_EQ((fixed<16, 4, RND>(0.1f).to_double()), (fixed<16, 4, RND>(static_cast<double>(0.1f)).to_double()));
+}
+
+// Section 11: ++/-- add 1.0 with the type's Q/O.
+template <class T>
+concept incrementable = requires(T x) {
+  ++x;
+  x++;
+  --x;
+  x--;
+};
+TEST(FixedSpecExamples, Section11IncrementAddsOne) {
+  fixed<8, 4> p = 1.5;
+  ++p;
+  EXPECT_EQ(p.to_double(), 2.5);
+  const fixed<8, 4> old = p++;
+  EXPECT_EQ(old.to_double(), 2.5);
+  EXPECT_EQ(p.to_double(), 3.5);
+  --p;
+  p--;
+  EXPECT_EQ(p.to_double(), 1.5);
+  fixed<4, 4, TRN, SAT> s = 7;
+  ++s;
+  EXPECT_EQ(s.to_double(), 7.0);  // saturates
+  fixed<4, 4> w = 7;
+  ++w;
+  EXPECT_EQ(w.to_double(), -8.0);  // wraps
+  // I <= 0: 1.0 is out of range; with I == 0 it wraps to the same value.
+  fixed<6, 0> z = 0.25;
+  ++z;  // 1.25 wraps modulo 1.0
+  EXPECT_EQ(z.to_double(), 0.25);
+  fixed<6, -1> zm = 0.125;
+  --zm;  // -0.875 wraps modulo 0.5
+  EXPECT_EQ(zm.to_double(), 0.125);
+  fixed<6, 0, TRN, SAT> zs = 0.25;
+  ++zs;
+  EXPECT_EQ(zs.to_double(), 31.0 / 64);
+  // ++ is ill-formed for I > W.
+  static_assert(incrementable<fixed<8, 4>>);
+  static_assert(incrementable<fixed<8, 8>>);
+  static_assert(!incrementable<fixed<4, 8>>);
+}
+
+}  // namespace
