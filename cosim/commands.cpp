@@ -77,14 +77,6 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
   out << j.dump(2) << "\n";
 }
 
-double max_abs_gradient(const ref::GradientField& g) {
-  double m = 0.0;
-  for (const glm::vec3& v : g.g)
-    m = std::max({m, std::abs(static_cast<double>(v.x)), std::abs(static_cast<double>(v.y)),
-                  std::abs(static_cast<double>(v.z))});
-  return m;
-}
-
 // One view with the chosen engine; the fixed-point engines' output is scaled
 // back to [0, 1] for writing.
 ref::Image render_view(const ref::Scene& scene, const ref::Volume& volume,
@@ -120,10 +112,9 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   RenderSummary s;
   for (const std::string& out : options.outputs) check_image_path(out);
   const auto t_load = Clock::now();
-  const ref::Volume volume = ref::load_volume(
-      scene.volume.source, scene.base_dir, scene.volume.raw ? &*scene.volume.raw : nullptr);
-  ref::validate_against_volume(scene, volume);
-  const ref::GradientField gradients = ref::compute_gradients(volume, scene.volume.gradient);
+  const SceneVolume sv = load_scene_volume(scene);
+  const ref::Volume& volume = sv.volume;
+  const ref::GradientField& gradients = sv.gradients;
   s.load_seconds = seconds_since(t_load);
   s.volume_source = volume.source;
   s.dims = volume.dims;
@@ -133,11 +124,7 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   // The fixed-point engines hold the volume as voxel words in 8 banks.
   std::optional<bittrue::VoxelMemory> memory;
   if (options.engine != Engine::Ref) {
-    check_profile_fits(scene.precision, volume, max_abs_gradient(gradients));
-    if (options.engine == Engine::Hls && !hls_supports(scene.precision))
-      throw Error("precision profile " + scene.precision_name +
-                  " is not compiled into the hls engine (compiled: " + hls_supported_profiles() +
-                  ")");
+    check_fixed_point(scene, sv, options.engine == Engine::Hls);
     memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
   }
 

@@ -23,14 +23,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-double max_abs_gradient(const ref::GradientField& g) {
-  double m = 0.0;
-  for (const glm::vec3& v : g.g)
-    m = std::max({m, std::abs(static_cast<double>(v.x)), std::abs(static_cast<double>(v.y)),
-                  std::abs(static_cast<double>(v.z))});
-  return m;
-}
-
 // Signed difference hls - float, per channel, in [−1, 1] of full scale.
 ref::Image difference(const ref::Image& a, const ref::Image& b) {
   ref::Image d(a.width, a.height);
@@ -73,15 +65,10 @@ nlohmann::json accuracy_json(const Accuracy& a) {
 CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   CosimResult r;
   std::filesystem::create_directories(out_dir);
-  const ref::Volume volume = ref::load_volume(scene.volume.source, scene.base_dir,
-                                              scene.volume.raw ? &*scene.volume.raw : nullptr);
-  ref::validate_against_volume(scene, volume);
-  const ref::GradientField gradients = ref::compute_gradients(volume, scene.volume.gradient);
-  check_profile_fits(scene.precision, volume, max_abs_gradient(gradients));
-  if (!hls_supports(scene.precision))
-    throw Error("precision profile " + scene.precision_name +
-                " is not compiled into the hls engine (compiled: " + hls_supported_profiles() +
-                ")");
+  const SceneVolume sv = load_scene_volume(scene);
+  check_fixed_point(scene, sv, true);
+  const ref::Volume& volume = sv.volume;
+  const ref::GradientField& gradients = sv.gradients;
 
   // One frame: the camera pose (a path's first keyframe), mono.
   const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();

@@ -8,8 +8,22 @@
 
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/precision/profile.hpp"
+#include "refmodel/scene/scene.hpp"
 
 namespace voxcast::cosim {
+
+// A scene's volume as every engine needs it: loaded, checked against the
+// scene (crop), with its gradient voxel property.
+struct SceneVolume {
+  ref::Volume volume;
+  ref::GradientField gradients;
+};
+SceneVolume load_scene_volume(const ref::Scene& scene);
+
+// Throws voxcast::Error naming the width if the scene's precision profile
+// cannot hold the volume, or (hls = true) if the hls engine is not compiled
+// for it.
+void check_fixed_point(const ref::Scene& scene, const SceneVolume& sv, bool hls);
 
 // The hls engine is compiled for a fixed set of profiles (the kernels take
 // the profile as a template parameter, as a synthesized design would).

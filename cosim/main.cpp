@@ -7,6 +7,7 @@
 
 #include "cosim/commands.hpp"
 #include "cosim/cosim.hpp"
+#include "cosim/regress.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
@@ -52,6 +53,20 @@ int main(int argc, char** argv) {
   cosim->add_option("--out", cosim_out, "Output folder (report.json, layers.exr, PNGs)")->required();
   add_set_option(*cosim, cosim_sets);
 
+  // regress
+  voxcast::cosim::RegressOptions regress_opts{"scenes", "tests/golden/regress",
+                                              {"vizard2", "balanced", "precise"}, false, {}};
+  CLI::App* regress = app.add_subcommand(
+      "regress", "Bit-accuracy regression: every scene x preset, hls == bit-true == golden hash");
+  regress->add_option("--scenes", regress_opts.scenes_dir, "Folder of scenes")->capture_default_str();
+  regress->add_option("--golden", regress_opts.golden_dir, "Folder of golden files")
+      ->capture_default_str();
+  regress->add_option("--profiles", regress_opts.profiles, "Presets to run")->delimiter(',');
+  regress->add_flag("--bless", regress_opts.bless,
+                    "Measure accuracy against the float reference and (re)write the golden files "
+                    "of the cases that meet their floor");
+  add_set_option(*regress, regress_opts.overrides);
+
   // demo
   Overrides demo_sets;
   std::string demo_out = "out/demo";
@@ -83,6 +98,12 @@ int main(int argc, char** argv) {
                   << voxcast::bittrue::to_string(r.mismatch.unit) << "; reproducer "
                   << r.mismatch.reproducer << "\n";
         return 3;
+      }
+    } else if (*regress) {
+      const int failed = voxcast::cosim::run_regress(regress_opts, std::cout);
+      if (failed > 0) {
+        std::cerr << "voxcast: regress: " << failed << " case(s) failed\n";
+        return 4;
       }
     } else if (*demo) {
       const auto scene = voxcast::ref::default_scene(demo_sets);

@@ -15,6 +15,7 @@
 
 #include "hls/classification_table.hpp"
 #include "hls/shader.hpp"
+#include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "refmodel/precision/profile.hpp"
 
@@ -24,13 +25,6 @@
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
-#ifndef VOXCAST_HLS_PRAGMA
-#if defined(__SYNTHESIS__)
-#define VOXCAST_HLS_PRAGMA(x) _Pragma(#x)
-#else
-#define VOXCAST_HLS_PRAGMA(x)
-#endif
-#endif
 
 namespace voxcast::hls {
 

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 
+#include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "refmodel/precision/profile.hpp"
 
@@ -28,15 +29,6 @@
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
-// Vendor pragmas are emitted only for the synthesis tool (g++ -Wall would warn
-// about an unknown #pragma).
-#ifndef VOXCAST_HLS_PRAGMA
-#if defined(__SYNTHESIS__)
-#define VOXCAST_HLS_PRAGMA(x) _Pragma(#x)
-#else
-#define VOXCAST_HLS_PRAGMA(x)
-#endif
-#endif
 
 namespace voxcast::hls {
 

@@ -19,6 +19,7 @@
 #include <cstdint>
 
 #include "hls/geometry_processor.hpp"
+#include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "refmodel/precision/profile.hpp"
 

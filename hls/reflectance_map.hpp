@@ -12,8 +12,10 @@
 //      registers. Not synthesized.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
+#include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "refmodel/precision/profile.hpp"
 
@@ -23,22 +25,13 @@
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
-#ifndef VOXCAST_HLS_PRAGMA
-#if defined(__SYNTHESIS__)
-#define VOXCAST_HLS_PRAGMA(x) _Pragma(#x)
-#else
-#define VOXCAST_HLS_PRAGMA(x)
-#endif
-#endif
 
 namespace voxcast::hls {
 
 namespace rm_detail {
 // Bits of an unsigned integer that holds every value 0..n (n >= 0; at least 1).
 constexpr int bits_for(long long n) {
-  int b = 1;
-  while ((1LL << b) <= n) ++b;
-  return b;
+  return n < 1 ? 1 : static_cast<int>(std::bit_width(static_cast<unsigned long long>(n)));
 }
 }  // namespace rm_detail
 

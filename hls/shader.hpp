@@ -6,16 +6,10 @@
 
 #include "hls/classification_table.hpp"
 #include "hls/reflectance_map.hpp"
+#include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "refmodel/precision/profile.hpp"
 
-#ifndef VOXCAST_HLS_PRAGMA
-#if defined(__SYNTHESIS__)
-#define VOXCAST_HLS_PRAGMA(x) _Pragma(#x)
-#else
-#define VOXCAST_HLS_PRAGMA(x)
-#endif
-#endif
 
 namespace voxcast::hls {
 

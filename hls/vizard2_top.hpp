@@ -20,6 +20,7 @@
 #include "hls/interpolation_processor.hpp"
 #include "hls/reflectance_map.hpp"
 #include "hls/shader.hpp"
+#include "hls/pragma.hpp"
 #include "hls/types.hpp"
 
 namespace voxcast::hls {

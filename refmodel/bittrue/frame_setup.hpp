@@ -64,6 +64,13 @@ struct FrameSetup {
   std::vector<std::uint32_t> rm_specular;  // likewise
 };
 
+// Voxel values enter the value field scaled to its full range (docs/pipeline.md
+// §3.4): value = stored << value_shift, so an 8-bit volume in a 12-bit field
+// uses every classification-table address. Gradients scale with the values.
+inline int value_shift(const PrecisionProfile& p, const ref::Volume& v) {
+  return p.value_bits > v.bits ? p.value_bits - v.bits : 0;
+}
+
 // Raw integer of Q_RND(x, frac_bits) (ties towards +inf), for register loads.
 Raw quantize_rnd(double x, int frac_bits);
 

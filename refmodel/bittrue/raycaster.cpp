@@ -1,5 +1,7 @@
 #include "refmodel/bittrue/raycaster.hpp"
 
+#include <cmath>
+
 #include "refmodel/parallel.hpp"
 
 namespace voxcast::bittrue {
@@ -10,7 +12,13 @@ FrameSetup make_frame_setup(const PrecisionProfile& profile, const ref::Scene& s
   fs.profile = profile;
   fs.regs = make_frame_registers(profile, scene, inputs);
   if (fs.regs.perspective) fs.rsqrt_seed = make_rsqrt_seed(profile);
-  fs.class_table = make_class_table(profile, inputs.tf, inputs.settings.step);
+  // The table is addressed by the value field, where the data sit shifted to
+  // its full range (§3.4): express the transfer function in field units.
+  const double scale = std::ldexp(1.0, value_shift(profile, *inputs.volume.volume));
+  std::vector<ref::TfPoint> points = inputs.tf.points();
+  for (ref::TfPoint& pt : points) pt.value *= scale;
+  const ref::TransferFunction tf_field(points, inputs.tf.interpolation(), inputs.tf.material());
+  fs.class_table = make_class_table(profile, tf_field, inputs.settings.step);
   // A MIP or unshaded scene instantiates no shading unit: no reflectance maps.
   if (scene.render.mode == ref::RenderMode::Shaded)
     make_reflectance_maps(profile, inputs.shading, fs.rm_diffuse, fs.rm_specular);

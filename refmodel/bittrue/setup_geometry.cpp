@@ -126,7 +126,8 @@ FrameRegisters make_frame_registers(const PrecisionProfile& p,
     r.LO[k] = static_cast<int>(rv.index_box.lo[static_cast<int>(k)]);
     r.HI[k] = static_cast<int>(rv.index_box.hi[static_cast<int>(k)]);
   }
-  r.RM = quantize_rnd(1.0 / volume.max_stored(), df);
+  // MIP grey = M / full scale of the (shifted) value field's data range.
+  r.RM = quantize_rnd(1.0 / std::ldexp(volume.max_stored(), value_shift(p, volume)), df);
   r.ert_enabled = in.settings.ert_threshold < 1.0;
   r.ert_threshold = quantize_rnd(std::min(in.settings.ert_threshold, 1.0), p.acc_bits);
   return r;
@@ -159,6 +160,7 @@ VoxelMemory make_voxel_memory(const PrecisionProfile& p, const ref::Volume& volu
   for (auto& bank : mem.banks) bank.assign(words, VoxelWord{});  // padding words are zero
   const std::uint32_t vmax = (std::uint32_t{1} << p.value_bits) - 1u;
   const Raw gmax = (Raw{1} << (p.gradient_bits - 1)) - 1, gmin = -(Raw{1} << (p.gradient_bits - 1));
+  const int shift = value_shift(p, volume);
   for (int z = 0; z < volume.dims[2]; ++z)
     for (int y = 0; y < volume.dims[1]; ++y)
       for (int x = 0; x < volume.dims[0]; ++x) {
@@ -168,13 +170,14 @@ VoxelMemory make_voxel_memory(const PrecisionProfile& p, const ref::Volume& volu
                                  static_cast<std::size_t>(z >> 1) * static_cast<std::size_t>(hx) *
                                      static_cast<std::size_t>(hy);
         VoxelWord& w = mem.banks[static_cast<std::size_t>(bank)][word];
-        if (volume.data[i] > vmax)
+        const std::uint32_t value = std::uint32_t{volume.data[i]} << shift;
+        if (value > vmax)
           throw Error("precision.value_bits = " + std::to_string(p.value_bits) +
                       " cannot hold the voxel value " + std::to_string(volume.data[i]) + " (" +
                       volume.source + ")");
-        w.value = volume.data[i];
+        w.value = value;
         for (int c = 0; c < 3; ++c) {
-          const Raw g = quantize_rnd(gradients.g[i][c], p.gradient_frac_bits);
+          const Raw g = quantize_rnd(std::ldexp(gradients.g[i][c], shift), p.gradient_frac_bits);
           w.gradient[static_cast<std::size_t>(c)] =
               static_cast<std::int32_t>(g < gmin ? gmin : (g > gmax ? gmax : g));
         }

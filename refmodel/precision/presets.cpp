@@ -57,8 +57,10 @@ void check_profile_fits(const PrecisionProfile& p, const ref::Volume& v,
       throw Error("precision.addr_bits = " + std::to_string(p.addr_bits) + " cannot address " +
                   std::to_string(v.dims[a]) + " voxels along " + kAxis[a] + " (at most " +
                   std::to_string(1 << p.addr_bits) + ")");
-  // A gradient component must fit its signed field with its fraction bits.
+  // A gradient component, scaled with the values into the value field
+  // (docs/pipeline.md §3.4), must fit its signed field with its fraction bits.
   const double limit = std::ldexp(1.0, p.gradient_bits - 1 - p.gradient_frac_bits);
+  max_gradient_component = std::ldexp(max_gradient_component, p.value_bits - v.bits);
   if (max_gradient_component >= limit)
     throw Error("precision.gradient_bits = " + std::to_string(p.gradient_bits) + " (with " +
                 std::to_string(p.gradient_frac_bits) +

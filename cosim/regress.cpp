@@ -1,0 +1,154 @@
+#include "cosim/regress.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/engines.hpp"
+#include "cosim/metrics.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/scene/scene_toml.hpp"
+
+namespace voxcast::cosim {
+namespace fs = std::filesystem;
+
+std::string image_hash(const ref::QuantImage& img) {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto mix = [&h](std::uint64_t v) {
+    for (int b = 0; b < 8; ++b) {
+      h ^= (v >> (8 * b)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  };
+  mix(static_cast<std::uint64_t>(img.width));
+  mix(static_cast<std::uint64_t>(img.height));
+  mix(static_cast<std::uint64_t>(img.bits));
+  for (const auto& px : img.pixels)
+    for (std::uint32_t c : px) mix(c);
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+AccuracyFloor accuracy_floor(const std::string& profile) {
+  // docs/accuracy.md: balanced is the accuracy target (>= 50 dB, >= 99 % of
+  // pixels within 1 LSB); precise must do at least as well; vizard2 is the
+  // 2001 card's widths and is held to a floor that catches breakage.
+  if (profile == "vizard2") return {30.0, 50.0};
+  return {50.0, 99.0};
+}
+
+namespace {
+
+struct CaseResult {
+  bool bit_exact = false;
+  std::string hash;
+  std::string status;  // "ok", "CHANGED", "MISSING", "blessed", "REFUSED"
+  bool failed = false;
+};
+
+std::string golden_path(const RegressOptions& o, const std::string& scene, const std::string& p) {
+  return (fs::path(o.golden_dir) / (scene + "." + p + ".json")).string();
+}
+
+CaseResult run_case(const RegressOptions& o, const ref::Scene& scene, const SceneVolume& sv,
+                    const std::string& scene_name, const std::string& profile, std::ostream& os) {
+  CaseResult r;
+  check_fixed_point(scene, sv, true);
+  const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
+  const ref::RenderInputs in = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
+  const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
+  const bittrue::VoxelMemory memory =
+      bittrue::make_voxel_memory(scene.precision, sv.volume, sv.gradients);
+  const ref::QuantImage hls = hls_render_image(setup, memory, scene.render.threads);
+  const ref::QuantImage bt = bittrue::bt_render_image(setup, memory, scene.render.threads);
+  r.bit_exact = hls.pixels == bt.pixels;
+  r.hash = image_hash(hls);
+  const std::string gpath = golden_path(o, scene_name, profile);
+
+  std::ostringstream extra;
+  if (o.bless) {
+    const ref::Image truth = ref::render_image(in, scene.render.threads);
+    const Accuracy a = measure_accuracy(hls, truth);
+    const AccuracyFloor floor = accuracy_floor(profile);
+    extra << std::fixed << std::setprecision(2) << "  PSNR " << a.psnr_db << " dB, "
+          << a.pct_within_1lsb << "% within 1 LSB, max " << a.max_abs_err_lsb << " LSB";
+    if (!r.bit_exact || a.psnr_db < floor.psnr_db || a.pct_within_1lsb < floor.pct_within_1lsb) {
+      r.status = "REFUSED";
+      r.failed = true;
+      extra << " (floor " << floor.psnr_db << " dB, " << floor.pct_within_1lsb << "%"
+            << (r.bit_exact ? "" : "; not bit-exact") << ")";
+    } else {
+      nlohmann::json j;
+      j["scene"] = scene_name;
+      j["profile"] = profile;
+      j["hash"] = r.hash;
+      j["image"] = {{"width", hls.width}, {"height", hls.height}, {"bits", hls.bits}};
+      j["checked_accuracy"] = {{"psnr_db", a.psnr_db},
+                               {"pct_within_1lsb", a.pct_within_1lsb},
+                               {"max_abs_err_lsb", a.max_abs_err_lsb},
+                               {"rms_err_lsb", a.rms_err_lsb},
+                               {"floor_psnr_db", floor.psnr_db},
+                               {"floor_pct_within_1lsb", floor.pct_within_1lsb}};
+      fs::create_directories(o.golden_dir);
+      std::ofstream out(gpath);
+      if (!out) throw Error(gpath + ": cannot write the golden file");
+      out << j.dump(2) << "\n";
+      r.status = "blessed";
+    }
+  } else if (!fs::exists(gpath)) {
+    r.status = "MISSING";
+    r.failed = true;
+  } else {
+    std::ifstream in_file(gpath);
+    nlohmann::json j;
+    try {
+      in_file >> j;
+    } catch (const nlohmann::json::exception& e) {
+      throw Error(gpath + ": not a golden file (" + e.what() + ")");
+    }
+    const std::string golden = j.value("hash", "");
+    r.status = golden == r.hash ? "ok" : "CHANGED (golden " + golden + ")";
+    r.failed = golden != r.hash;
+  }
+  if (!r.bit_exact) r.failed = true;
+  os << std::left << std::setw(16) << scene_name << std::setw(10) << profile
+     << (r.bit_exact ? "bit-exact  " : "MISMATCH   ") << r.hash << "  " << r.status << extra.str()
+     << "\n";
+  return r;
+}
+
+}  // namespace
+
+int run_regress(const RegressOptions& o, std::ostream& os) {
+  std::vector<fs::path> scenes;
+  if (!fs::is_directory(o.scenes_dir)) throw Error(o.scenes_dir + ": not a folder of scenes");
+  for (const auto& e : fs::directory_iterator(o.scenes_dir))
+    if (e.path().extension() == ".toml") scenes.push_back(e.path());
+  std::sort(scenes.begin(), scenes.end());
+  if (scenes.empty()) throw Error(o.scenes_dir + ": no *.toml scenes");
+  int failed = 0, cases = 0;
+  for (const fs::path& path : scenes) {
+    const std::string name = path.stem().string();
+    // One volume load per scene, shared by its profiles.
+    const ref::Scene base = ref::load_scene_file(path.string(), o.overrides);
+    const SceneVolume sv = load_scene_volume(base);
+    for (const std::string& profile : o.profiles) {
+      std::vector<std::string> sets = o.overrides;
+      sets.push_back("precision.profile=" + profile);
+      const ref::Scene scene = ref::load_scene_file(path.string(), sets);
+      failed += run_case(o, scene, sv, name, profile, os).failed ? 1 : 0;
+      ++cases;
+    }
+  }
+  os << cases - failed << " passed, " << failed << " failed\n";
+  return failed;
+}
+
+}  // namespace voxcast::cosim
