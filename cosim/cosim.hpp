@@ -20,7 +20,8 @@ struct Mismatch {
 };
 
 struct CosimResult {
-  bool bit_exact = false;
+  bool hls_ran = false;       // the hls engine is compiled for the profile
+  bool bit_exact = false;     // hls == bit-true on every pixel (true when !hls_ran)
   Accuracy accuracy;          // hls against the float reference
   Mismatch mismatch;          // when !bit_exact
   std::uint64_t samples_float = 0, samples_hls = 0;

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cosim/commands.hpp"
+#include "cosim/bench.hpp"
 #include "cosim/cosim.hpp"
 #include "cosim/regress.hpp"
 #include "refmodel/error.hpp"
@@ -67,6 +68,19 @@ int main(int argc, char** argv) {
                     "of the cases that meet their floor");
   add_set_option(*regress, regress_opts.overrides);
 
+  // bench SCENE
+  std::string bench_scene;
+  std::vector<std::string> bench_engines{"ref", "bittrue", "hls"};
+  int bench_repeats = 5;
+  Overrides bench_sets;
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Measure samples per second of the engines on one scene (median of repeats)");
+  bench->add_option("scene", bench_scene, "Scene file (TOML)")->required();
+  bench->add_option("--engines", bench_engines, "Engines to time")->delimiter(',')
+      ->capture_default_str();
+  bench->add_option("--repeat", bench_repeats, "Timed frames per engine")->capture_default_str();
+  add_set_option(*bench, bench_sets);
+
   // demo
   Overrides demo_sets;
   std::string demo_out = "out/demo";
@@ -99,6 +113,10 @@ int main(int argc, char** argv) {
                   << r.mismatch.reproducer << "\n";
         return 3;
       }
+    } else if (*bench) {
+      const auto scene = voxcast::ref::load_scene_file(bench_scene, bench_sets);
+      voxcast::cosim::print_bench(std::cout, scene,
+                                  voxcast::cosim::run_bench(scene, bench_engines, bench_repeats));
     } else if (*regress) {
       const int failed = voxcast::cosim::run_regress(regress_opts, std::cout);
       if (failed > 0) {

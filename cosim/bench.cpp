@@ -1,0 +1,93 @@
+#include "cosim/bench.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <iomanip>
+
+#include "cosim/commands.hpp"
+#include "cosim/engines.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/parallel.hpp"
+
+namespace voxcast::cosim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Median and minimum wall time of `repeats` runs of `frame` after one warm-up.
+void time_frames(const std::function<std::uint64_t()>& frame, int repeats, BenchResult& r) {
+  r.samples = frame();  // warm-up (caches, page faults); also the sample count
+  std::vector<double> t;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = Clock::now();
+    frame();
+    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  r.median_seconds = t[t.size() / 2];
+  r.min_seconds = t.front();
+}
+
+}  // namespace
+
+std::vector<BenchResult> run_bench(const ref::Scene& scene, const std::vector<std::string>& engines,
+                                   int repeats) {
+  if (repeats < 1) throw Error("bench: --repeat must be at least 1");
+  const SceneVolume sv = load_scene_volume(scene);
+  const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
+  const ref::RenderInputs in = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
+  const int threads = scene.render.threads;
+  std::vector<BenchResult> out;
+  for (const std::string& name : engines) {
+    const Engine e = parse_engine(name);
+    BenchResult r;
+    r.engine = name;
+    if (e == Engine::Ref) {
+      time_frames([&] {
+        ref::FrameStats fs;
+        ref::render_image(in, threads, &fs);
+        return fs.samples;
+      }, repeats, r);
+    } else {
+      check_fixed_point(scene, sv, e == Engine::Hls);
+      const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
+      const bittrue::VoxelMemory memory =
+          bittrue::make_voxel_memory(scene.precision, sv.volume, sv.gradients);
+      time_frames([&] {
+        ref::FrameStats fs;
+        if (e == Engine::Hls)
+          hls_render_image(setup, memory, threads, &fs);
+        else
+          bittrue::bt_render_image(setup, memory, threads, &fs);
+        return fs.samples;
+      }, repeats, r);
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+void print_bench(std::ostream& os, const ref::Scene& scene, const std::vector<BenchResult>& rs) {
+  os << "scene    " << scene.origin << " (" << scene.render.width << "x" << scene.render.height
+     << " " << ref::to_string(scene.render.mode) << ", oversampling " << scene.render.oversampling
+     << ", profile " << scene.precision_name << ", " << ref::worker_count(scene.render.threads)
+     << " threads)\n";
+  os << std::left << std::setw(10) << "engine" << std::right << std::setw(14) << "samples"
+     << std::setw(12) << "median s" << std::setw(12) << "min s" << std::setw(14) << "M samples/s"
+     << std::setw(12) << "ns/sample" << std::setw(10) << "vs ref\n";
+  double ref_rate = 0.0;
+  for (const BenchResult& r : rs)
+    if (r.engine == "ref") ref_rate = r.samples_per_second();
+  os << std::fixed;
+  for (const BenchResult& r : rs) {
+    const double rate = r.samples_per_second();
+    os << std::left << std::setw(10) << r.engine << std::right << std::setw(14) << r.samples
+       << std::setprecision(3) << std::setw(12) << r.median_seconds << std::setw(12)
+       << r.min_seconds << std::setprecision(2) << std::setw(14) << rate / 1e6 << std::setw(12)
+       << (rate > 0 ? 1e9 / rate : 0.0) << std::setw(9)
+       << (ref_rate > 0 ? rate / ref_rate : 0.0) << "x\n";
+  }
+}
+
+}  // namespace voxcast::cosim
