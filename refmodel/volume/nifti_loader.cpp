@@ -26,7 +26,6 @@ namespace voxcast::ref {
 namespace {
 
 constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
-constexpr int kMaxDim = 65535;
 constexpr std::uint32_t kMaxStored16 = 0xFFFF;
 
 struct HeaderFree {
@@ -85,9 +84,10 @@ void check_header(const std::string& path, const nifti_1_header& h) {
                   "] = 1)");
   std::uint64_t voxels = 1;
   for (int a = 1; a <= 3; ++a) {
-    if (h.dim[a] < 1 || h.dim[a] > kMaxDim)
+    // dim[] is a 16-bit signed field in NIfTI-1, so only the lower bound can fail.
+    if (h.dim[a] < 1)
       throw Error(path + ": dim[" + std::to_string(a) + "] = " + std::to_string(h.dim[a]) +
-                  " is not a valid size (1.." + std::to_string(kMaxDim) + ")");
+                  " is not a valid size (must be >= 1)");
     voxels *= static_cast<std::uint64_t>(h.dim[a]);
   }
   if (voxels > kMaxVoxels)

@@ -1,0 +1,58 @@
+// SDR SDRAM commands and addresses.
+//
+// The commands a controller puts on a PC100 DIMM's command bus, one per clock
+// (Micron 128Mb SDRAM data sheet, Rev. E, "Truth Table 1 - Commands and DQM
+// Operation"): ACTIVE, READ, WRITE, PRECHARGE (one bank, A10 low), PRECHARGE
+// ALL (A10 high), AUTO REFRESH, and NOP. Auto-precharge variants, BURST
+// TERMINATE, LOAD MODE REGISTER and self refresh are not modelled: VIZARD II's
+// controller closes rows explicitly, and the mode register is set once at
+// power-up.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <iosfwd>
+#include <limits>
+#include <string_view>
+
+#include "rtl_model/sim/clock.hpp"
+
+namespace voxcast::rtl::sdram {
+
+using sim::Cycle;
+
+// "Never happened": far enough below zero that kNever + any delay stays in the
+// past and cannot overflow.
+inline constexpr Cycle kNever = std::numeric_limits<Cycle>::min() / 4;
+
+enum class Command : std::uint8_t { kNop, kAct, kRd, kWr, kPre, kPrea, kRef };
+
+inline constexpr std::size_t kCommandCount = 7;
+inline constexpr std::array<Command, kCommandCount> kAllCommands{
+    Command::kNop, Command::kAct,  Command::kRd, Command::kWr,
+    Command::kPre, Command::kPrea, Command::kRef};
+
+constexpr std::size_t index_of(Command c) { return static_cast<std::size_t>(c); }
+// "ACT", "RD", ...
+std::string_view name(Command c);
+std::ostream& operator<<(std::ostream& os, Command c);
+
+// PRECHARGE ALL and AUTO REFRESH address the whole rank, not one bank.
+constexpr bool is_rank_command(Command c) { return c == Command::kPrea || c == Command::kRef; }
+// READ and WRITE carry a column address and move data.
+constexpr bool is_column_command(Command c) { return c == Command::kRd || c == Command::kWr; }
+
+// A location in one DIMM (one rank): internal bank, row, column. A column is
+// one beat of the 64-bit module bus (8 bytes).
+struct Address {
+  std::uint32_t bank = 0;
+  std::uint32_t row = 0;
+  std::uint32_t column = 0;
+
+  friend bool operator==(const Address&, const Address&) = default;
+};
+
+std::ostream& operator<<(std::ostream& os, const Address& a);
+
+}  // namespace voxcast::rtl::sdram

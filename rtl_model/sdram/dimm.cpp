@@ -1,0 +1,377 @@
+#include "rtl_model/sdram/dimm.hpp"
+
+#include <ostream>
+#include <sstream>
+#include <utility>
+
+#include "refmodel/error.hpp"
+
+namespace voxcast::rtl::sdram {
+
+// ---- Printing ----------------------------------------------------------------------------
+std::string describe(Command cmd, const Address& a) {
+  std::ostringstream os;
+  os << cmd;
+  switch (cmd) {
+    case Command::kAct:
+      os << " to bank " << a.bank << " row " << a.row;
+      break;
+    case Command::kRd:
+    case Command::kWr:
+      os << " to bank " << a.bank << " row " << a.row << " col " << a.column;
+      break;
+    case Command::kPre:
+      os << " to bank " << a.bank;
+      break;
+    case Command::kNop:
+    case Command::kPrea:
+    case Command::kRef:
+      break;
+  }
+  return os.str();
+}
+
+std::ostream& operator<<(std::ostream& os, const DimmConfig& c) {
+  return os << c.geometry << "; " << c.timing.name << " [" << c.timing.part << "] at " << c.clock
+            << "; BL " << c.burst_length << "; refresh postpone limit " << c.refresh_postpone_limit;
+}
+
+std::ostream& operator<<(std::ostream& os, const Bank& b) {
+  if (b.state == BankState::kIdle) return os << "idle";
+  return os << "active, row " << b.open_row << " open since cycle " << b.activated_at;
+}
+
+std::ostream& operator<<(std::ostream& os, RowOutcome o) {
+  switch (o) {
+    case RowOutcome::kHit:
+      return os << "hit";
+    case RowOutcome::kMiss:
+      return os << "miss";
+    case RowOutcome::kConflict:
+      return os << "conflict";
+  }
+  return os << "?";
+}
+
+std::ostream& operator<<(std::ostream& os, const DataWindow& w) {
+  return os << "data cycles " << w.first << ".." << w.last;
+}
+
+std::ostream& operator<<(std::ostream& os, const Issued& i) {
+  os << describe(i.command, i.address) << " at cycle " << i.cycle;
+  if (i.data) os << ", " << *i.data;
+  return os;
+}
+
+BankStats DimmStats::total() const {
+  BankStats t;
+  for (const BankStats& b : banks) {
+    t.activates += b.activates;
+    t.reads += b.reads;
+    t.writes += b.writes;
+    t.precharges += b.precharges;
+    t.open_cycles += b.open_cycles;
+  }
+  return t;
+}
+
+std::ostream& operator<<(std::ostream& os, const DimmStats& s) {
+  const BankStats t = s.total();
+  os << s.commands << " commands: " << t.activates << " ACT, " << t.reads << " RD, " << t.writes
+     << " WR, " << t.precharges << " rows closed (" << s.precharge_alls << " PREA), " << s.refreshes
+     << " REF; data bus busy " << s.data_bus_busy_cycles << " cycles, refresh busy "
+     << s.refresh_busy_cycles << " cycles";
+  for (std::size_t b = 0; b < s.banks.size(); ++b) {
+    const BankStats& k = s.banks[b];
+    os << "\n  bank " << b << ": " << k.activates << " ACT, " << k.reads << " RD, " << k.writes
+       << " WR, " << k.precharges << " closed, open " << k.open_cycles << " cycles";
+  }
+  return os;
+}
+
+// ---- Construction ------------------------------------------------------------------------
+namespace {
+const Geometry& validated(const Geometry& g) {
+  if (g.banks == 0 || g.rows == 0 || g.columns == 0 || g.bus_bits == 0 || g.bus_bits % 8 != 0) {
+    std::ostringstream os;
+    os << "DIMM geometry '" << g.module << "' is invalid: " << g;
+    throw Error(os.str());
+  }
+  return g;
+}
+}  // namespace
+
+Dimm::Dimm(DimmConfig config)
+    : config_(std::move(config)),
+      timing_(to_cycles(config_.timing, config_.clock, config_.burst_length)),
+      table_(timing_),
+      refresh_(timing_.tREFI, config_.refresh_postpone_limit),
+      banks_(validated(config_.geometry).banks),
+      last_by_bank_(config_.geometry.banks) {
+  for (auto& last : last_by_bank_) last.fill(kNever);
+  last_by_rank_.fill(kNever);
+  stats_.banks.resize(config_.geometry.banks);
+  // An open-page controller may leave a row open from just after one REF to
+  // the next, which can come as late as the refresh deadline: that span must
+  // stay within tRAS(max).
+  const Cycle longest_open = (2 + config_.refresh_postpone_limit) * timing_.tREFI;
+  if (longest_open > timing_.tRAS_max) {
+    std::ostringstream os;
+    os << "refresh postpone limit " << config_.refresh_postpone_limit << " lets a row stay open "
+       << longest_open << " cycles between refreshes, beyond tRAS(max) = " << timing_.tRAS_max
+       << " cycles";
+    throw Error(os.str());
+  }
+}
+
+bool Dimm::all_banks_idle() const {
+  for (const Bank& b : banks_) {
+    if (b.state != BankState::kIdle) return false;
+  }
+  return true;
+}
+
+// ---- Timing: the constraint table --------------------------------------------------------
+Gate Dimm::gate(Command cmd, std::uint32_t bank, Cycle now) const {
+  Gate g{.earliest = now};
+  if (cmd == Command::kNop) return g;
+  const bool rank_cmd = is_rank_command(cmd);
+  if (!rank_cmd && bank >= bank_count()) {
+    std::ostringstream os;
+    os << cmd << ": bank " << bank << " does not exist (the DIMM has " << bank_count() << " banks)";
+    throw Error(os.str());
+  }
+  for (std::size_t i : table_.rows_before(cmd)) {
+    const Constraint& c = table_.rows()[i];
+    auto consider = [&](Cycle prev_cycle, std::uint32_t prev_bank) {
+      if (prev_cycle == kNever) return;
+      const Cycle bound = prev_cycle + c.cycles;
+      if (bound > g.earliest) g = Gate{bound, &c, prev_cycle, prev_bank};
+    };
+    if (is_rank_command(c.prev)) {
+      consider(last_by_rank_[index_of(c.prev)], 0);
+      continue;
+    }
+    for (std::uint32_t b = 0; b < bank_count(); ++b) {
+      const bool same = !rank_cmd && b == bank;
+      if ((c.scope == Scope::kSameBank && !same) || (c.scope == Scope::kOtherBank && same))
+        continue;
+      consider(last_by_bank_[b][index_of(c.prev)], b);
+    }
+  }
+  return g;
+}
+
+// ---- Legality ----------------------------------------------------------------------------
+std::optional<std::string> Dimm::violation(Command cmd, const Address& a, Cycle now) const {
+  std::string why;
+  if (check(cmd, a, now, &why)) return std::nullopt;
+  return why;
+}
+
+bool Dimm::check(Command cmd, const Address& a, Cycle now, std::string* why) const {
+  // Builds the message only when the caller asked for one.
+  auto reject = [&](auto&& reason) {
+    if (why != nullptr) {
+      std::ostringstream os;
+      os << describe(cmd, a) << " at cycle " << now << ": ";
+      reason(os);
+      *why = os.str();
+    }
+    return false;
+  };
+  if (cmd == Command::kNop) return true;
+
+  // Step 1: the address exists.
+  const Geometry& g = config_.geometry;
+  if (!is_rank_command(cmd)) {
+    if (a.bank >= g.banks) {
+      return reject(
+          [&](std::ostream& os) { os << "no such bank (the DIMM has " << g.banks << ")"; });
+    }
+    if ((cmd == Command::kAct || is_column_command(cmd)) && a.row >= g.rows) {
+      return reject([&](std::ostream& os) { os << "no such row (a bank has " << g.rows << ")"; });
+    }
+    if (is_column_command(cmd) && a.column >= g.columns) {
+      return reject(
+          [&](std::ostream& os) { os << "no such column (a row has " << g.columns << ")"; });
+    }
+  }
+  // Step 2: one command per clock, in order.
+  if (now <= last_command_) {
+    return reject([&](std::ostream& os) {
+      os << "the command bus already carried a command at cycle " << last_command_
+         << " (one command per clock, in cycle order)";
+    });
+  }
+  // Step 3: refresh not overdue; no row open beyond tRAS(max).
+  if (refresh_.overdue(now)) {
+    return reject([&](std::ostream& os) {
+      os << "refresh overdue: " << refresh_.owed(now) << " REF owed (deadline was cycle "
+         << refresh_.deadline() << "; " << refresh_ << ")";
+    });
+  }
+  for (std::uint32_t b = 0; b < bank_count(); ++b) {
+    const Bank& k = banks_[b];
+    if (k.state == BankState::kActive && now - k.activated_at > timing_.tRAS_max) {
+      return reject([&](std::ostream& os) {
+        os << "bank " << b << " has held row " << k.open_row << " open since cycle "
+           << k.activated_at << ", beyond tRAS(max) = " << timing_.tRAS_max << " cycles";
+      });
+    }
+  }
+  // Step 4: the bank state allows the command.
+  if (!check_state(cmd, a, nullptr)) {
+    return reject([&](std::ostream& os) {
+      std::string state;
+      check_state(cmd, a, &state);
+      os << state;
+    });
+  }
+  // Step 5: every row of the constraint table.
+  const Gate gt = gate(cmd, a.bank, now);
+  if (gt.earliest > now) {
+    return reject([&](std::ostream& os) {
+      const Constraint& c = *gt.binding;
+      os << "violates " << c.parameter << " (" << c.prev;
+      if (!is_rank_command(c.prev)) os << " to bank " << gt.since_bank;
+      os << " at cycle " << gt.since << ", " << c.scope << ", needs " << c.cycles
+         << " cycles; earliest cycle " << gt.earliest << ")";
+    });
+  }
+  return true;
+}
+
+bool Dimm::check_state(Command cmd, const Address& a, std::string* why) const {
+  auto reject = [&](const std::string& reason) {
+    if (why != nullptr) *why = reason;
+    return false;
+  };
+  switch (cmd) {
+    case Command::kAct: {
+      const Bank& k = banks_[a.bank];
+      if (k.state == BankState::kActive) {
+        return reject("bank " + std::to_string(a.bank) + " already has row " +
+                      std::to_string(k.open_row) + " open (precharge first)");
+      }
+      return true;
+    }
+    case Command::kRd:
+    case Command::kWr: {
+      const Bank& k = banks_[a.bank];
+      if (k.state == BankState::kIdle) {
+        return reject("bank " + std::to_string(a.bank) + " is idle (no open row)");
+      }
+      if (k.open_row != a.row) {
+        return reject("bank " + std::to_string(a.bank) + " has row " + std::to_string(k.open_row) +
+                      " open, not row " + std::to_string(a.row));
+      }
+      return true;
+    }
+    case Command::kRef:
+      for (std::uint32_t b = 0; b < bank_count(); ++b) {
+        if (banks_[b].state == BankState::kActive) {
+          return reject("bank " + std::to_string(b) + " has row " +
+                        std::to_string(banks_[b].open_row) +
+                        " open; AUTO REFRESH needs every bank precharged");
+        }
+      }
+      return true;
+    case Command::kNop:
+    case Command::kPre:
+    case Command::kPrea:
+      return true;
+  }
+  return true;
+}
+
+// ---- Issue -------------------------------------------------------------------------------
+Issued Dimm::issue(Command cmd, const Address& a, Cycle now) {
+  std::string why;
+  if (!check(cmd, a, now, &why)) throw Error(why);
+  Issued issued;
+  issued.command = cmd;
+  issued.address = a;
+  issued.cycle = now;
+  if (cmd == Command::kNop) return issued;
+  if (cmd == Command::kRd) {
+    // Data on the bus CL clocks after the READ, one beat per clock.
+    issued.data = DataWindow{now + timing_.CL, now + timing_.CL + timing_.BL - 1};
+  } else if (cmd == Command::kWr) {
+    // Write latency 0: data-in registered with the WRITE and after it.
+    issued.data = DataWindow{now, now + timing_.BL - 1};
+  }
+  apply(cmd, a, now);
+  return issued;
+}
+
+void Dimm::apply(Command cmd, const Address& a, Cycle now) {
+  switch (cmd) {
+    case Command::kAct:
+      banks_[a.bank] = Bank{BankState::kActive, a.row, now};
+      ++stats_.banks[a.bank].activates;
+      break;
+    case Command::kRd:
+      ++stats_.banks[a.bank].reads;
+      stats_.data_bus_busy_cycles += timing_.BL;
+      break;
+    case Command::kWr:
+      ++stats_.banks[a.bank].writes;
+      stats_.data_bus_busy_cycles += timing_.BL;
+      break;
+    case Command::kPre:
+      if (banks_[a.bank].state == BankState::kActive) close_row(a.bank, now);
+      break;
+    case Command::kPrea:
+      for (std::uint32_t b = 0; b < bank_count(); ++b) {
+        if (banks_[b].state == BankState::kActive) close_row(b, now);
+      }
+      ++stats_.precharge_alls;
+      break;
+    case Command::kRef:
+      ++stats_.refreshes;
+      stats_.refresh_busy_cycles += timing_.tRFC;
+      refresh_.on_refresh(now);
+      break;
+    case Command::kNop:
+      return;
+  }
+  if (is_rank_command(cmd)) {
+    last_by_rank_[index_of(cmd)] = now;
+  } else {
+    last_by_bank_[a.bank][index_of(cmd)] = now;
+  }
+  last_command_ = now;
+  ++stats_.commands;
+}
+
+void Dimm::close_row(std::uint32_t b, Cycle now) {
+  stats_.banks[b].open_cycles += now - banks_[b].activated_at;
+  ++stats_.banks[b].precharges;
+  banks_[b].state = BankState::kIdle;
+}
+
+// ---- Request-level queries ---------------------------------------------------------------
+RowOutcome Dimm::row_outcome(const Address& a) const {
+  const Bank& k = banks_.at(a.bank);
+  if (k.state == BankState::kIdle) return RowOutcome::kMiss;
+  return k.open_row == a.row ? RowOutcome::kHit : RowOutcome::kConflict;
+}
+
+Command Dimm::next_command(Command column_command, const Address& a) const {
+  if (!is_column_command(column_command)) {
+    throw Error("Dimm::next_command: " + std::string(name(column_command)) +
+                " is not a column command");
+  }
+  switch (row_outcome(a)) {
+    case RowOutcome::kHit:
+      return column_command;
+    case RowOutcome::kMiss:
+      return Command::kAct;
+    case RowOutcome::kConflict:
+      return Command::kPre;
+  }
+  return Command::kNop;
+}
+
+}  // namespace voxcast::rtl::sdram

@@ -1,0 +1,178 @@
+// One 64-bit SDRAM DIMM (one rank of internal banks) as a cycle-accurate
+// command-level device model: per-bank state, the constraint table as the
+// only source of timing, refresh bookkeeping, read/write data windows and
+// statistics. It is the referee of every controller and scheduler: issue()
+// rejects any illegal command with a message naming the command, bank,
+// cycle and the violated rule.
+//
+// Contract:
+//   - Commands arrive in strictly increasing cycles, at most one per clock
+//     (the single command bus of SDR SDRAM). NOP is always legal and changes
+//     nothing.
+//   - earliest()/gate() answer timing only: the first cycle >= now at which
+//     every row of the constraint table allows the command. can_issue() and
+//     violation() add everything else: address range, bank state (ACT needs
+//     an idle bank; RD/WR need the addressed row open; REF needs all banks
+//     idle), the command bus, overdue refresh and tRAS(max).
+//   - PRE to an idle bank (or PREA with no bank open) is legal, as in the
+//     datasheet's truth table (it acts as a NOP there); the model still times
+//     it as a precharge, which is conservative.
+//   - issue() changes nothing when it throws.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rtl_model/sdram/command.hpp"
+#include "rtl_model/sdram/geometry.hpp"
+#include "rtl_model/sdram/refresh.hpp"
+#include "rtl_model/sdram/timing.hpp"
+#include "rtl_model/sim/clock.hpp"
+
+namespace voxcast::rtl::sdram {
+
+struct DimmConfig {
+  Geometry geometry = geometries::mt4lsdt864a();
+  TimingNs timing = presets::pc100_cl2();
+  sim::ClockDomain clock = sim::clocks::pc100();
+  // Mode-register burst length. VIZARD II reads one 64-bit word per DIMM per
+  // sample (four DIMMs give the 2x2x2 neighbourhood): BL 1.
+  int burst_length = 1;
+  // REFs that may be postponed beyond the one due (see refresh.hpp).
+  int refresh_postpone_limit = 0;
+};
+
+std::ostream& operator<<(std::ostream& os, const DimmConfig& c);
+
+enum class BankState : std::uint8_t { kIdle, kActive };
+
+struct Bank {
+  BankState state = BankState::kIdle;
+  std::uint32_t open_row = 0;   // valid when active
+  Cycle activated_at = kNever;  // the ACT that opened the row
+};
+
+std::ostream& operator<<(std::ostream& os, const Bank& b);
+
+// How a request's row meets its bank.
+enum class RowOutcome : std::uint8_t {
+  kHit,       // the row is open
+  kMiss,      // the bank is idle: ACT first
+  kConflict,  // another row is open: PRE, then ACT
+};
+
+std::ostream& operator<<(std::ostream& os, RowOutcome o);
+
+// Cycles at which data beats are on the DQ bus, inclusive.
+struct DataWindow {
+  Cycle first = 0;
+  Cycle last = 0;
+};
+
+std::ostream& operator<<(std::ostream& os, const DataWindow& w);
+
+// The earliest cycle a command may be issued and the constraint that binds
+// there (none when only `now` binds).
+struct Gate {
+  Cycle earliest = 0;
+  const Constraint* binding = nullptr;
+  Cycle since = kNever;          // cycle of the binding previous command
+  std::uint32_t since_bank = 0;  // its bank (bank commands)
+};
+
+struct Issued {
+  Command command = Command::kNop;
+  Address address;
+  Cycle cycle = 0;
+  std::optional<DataWindow> data;  // RD: CL later, BL beats; WR: from the command
+};
+
+std::ostream& operator<<(std::ostream& os, const Issued& i);
+
+struct BankStats {
+  std::uint64_t activates = 0;
+  std::uint64_t reads = 0;
+  std::uint64_t writes = 0;
+  std::uint64_t precharges = 0;  // rows closed, by PRE or PREA
+  Cycle open_cycles = 0;         // cycles with a row open (closed rows only)
+};
+
+struct DimmStats {
+  std::vector<BankStats> banks;
+  std::uint64_t commands = 0;  // excluding NOP
+  std::uint64_t precharge_alls = 0;
+  std::uint64_t refreshes = 0;     // every REF refreshes a row in every bank
+  Cycle data_bus_busy_cycles = 0;  // beats moved
+  Cycle refresh_busy_cycles = 0;   // tRFC per REF
+
+  BankStats total() const;
+};
+
+std::ostream& operator<<(std::ostream& os, const DimmStats& s);
+
+class Dimm {
+ public:
+  // Throws voxcast::Error for an invalid geometry, a grade that cannot run at
+  // the clock, or a postponement limit that would let an open row exceed
+  // tRAS(max) between two refreshes.
+  explicit Dimm(DimmConfig config);
+
+  const DimmConfig& config() const { return config_; }
+  const Geometry& geometry() const { return config_.geometry; }
+  const TimingCycles& timing() const { return timing_; }
+  const ConstraintTable& constraints() const { return table_; }
+  const RefreshTracker& refresh() const { return refresh_; }
+  const DimmStats& stats() const { return stats_; }
+  const Bank& bank(std::uint32_t b) const { return banks_.at(b); }
+  std::uint32_t bank_count() const { return config_.geometry.banks; }
+  bool all_banks_idle() const;
+  Cycle last_command_cycle() const { return last_command_; }
+
+  // Timing only (see the contract). `bank` is ignored for PREA and REF.
+  Cycle earliest(Command cmd, std::uint32_t bank, Cycle now) const {
+    return gate(cmd, bank, now).earliest;
+  }
+  Gate gate(Command cmd, std::uint32_t bank, Cycle now) const;
+
+  // Full legality at `now`.
+  bool can_issue(Command cmd, const Address& a, Cycle now) const {
+    return check(cmd, a, now, nullptr);
+  }
+  // Why `cmd` is illegal at `now`, or nothing when it is legal.
+  std::optional<std::string> violation(Command cmd, const Address& a, Cycle now) const;
+  // Issues the command; throws voxcast::Error with violation()'s message.
+  Issued issue(Command cmd, const Address& a, Cycle now);
+
+  // Request-level queries for controllers (Ramulator's "prerequisite
+  // command"): the row outcome, and the next command a read or write of `a`
+  // needs now (ACT, PRE, or the column command itself).
+  RowOutcome row_outcome(const Address& a) const;
+  Command next_command(Command column_command, const Address& a) const;
+
+ private:
+  bool check(Command cmd, const Address& a, Cycle now, std::string* why) const;
+  bool check_state(Command cmd, const Address& a, std::string* why) const;
+  void apply(Command cmd, const Address& a, Cycle now);
+  void close_row(std::uint32_t b, Cycle now);
+
+  DimmConfig config_;
+  TimingCycles timing_;
+  ConstraintTable table_;
+  RefreshTracker refresh_;
+  std::vector<Bank> banks_;
+  // Cycle of the last command of each kind per bank (ACT, RD, WR, PRE) and
+  // for the rank (PREA, REF).
+  std::vector<std::array<Cycle, kCommandCount>> last_by_bank_;
+  std::array<Cycle, kCommandCount> last_by_rank_;
+  Cycle last_command_ = kNever;
+  DimmStats stats_;
+};
+
+// "RD to bank 2 row 7 col 12", "PREA", ...
+std::string describe(Command cmd, const Address& a);
+
+}  // namespace voxcast::rtl::sdram

@@ -1,0 +1,30 @@
+#include "rtl_model/sdram/geometry.hpp"
+
+#include <ostream>
+
+namespace voxcast::rtl::sdram {
+
+std::ostream& operator<<(std::ostream& os, const Geometry& g) {
+  return os << g.module << ": " << g.banks << " banks x " << g.rows << " rows x " << g.columns
+            << " columns x " << g.bus_bits << " bits = " << (g.bytes() >> 20) << " MB";
+}
+
+namespace geometries {
+Geometry mt4lsdt864a() {
+  return Geometry{
+      .module = "Micron MT4LSDT864A (64 MB, 8 Meg x 64, single rank)",
+      .component = "4 x Micron MT48LC8M16A2 (128Mb, 2 Meg x 16 x 4 banks)",
+      .source =
+          "Micron 32MB/64MB/128MB (x64, SR) 168-pin SDRAM UDIMM data sheet "
+          "(SD4C4_8_16X64AG, Rev. D 1/07), p. 1; component addressing from the Micron "
+          "128Mb x16 SDRAM data sheet (8 Meg x 16: 4 banks, 4K rows A0-A11, "
+          "512 columns A0-A8)",
+      .banks = 4,
+      .rows = 4096,
+      .columns = 512,
+      .bus_bits = 64,
+  };
+}
+}  // namespace geometries
+
+}  // namespace voxcast::rtl::sdram

@@ -1,0 +1,135 @@
+// A bounded FIFO of real depth with valid/ready semantics, as the hardware
+// FIFOs between the card's units (request queues, read-data return, the PCI
+// and core clock-crossing buffers) will be.
+//
+// Contract:
+//   - ready() (not full) is the producer's permission to push this cycle;
+//     valid() (not empty) is the consumer's permission to pop. Pushing when
+//     full or popping when empty is a protocol error in the model that uses
+//     the FIFO, reported as voxcast::Error naming the FIFO, never a silent
+//     drop or stall.
+//   - Storage is a ring of exactly depth() slots allocated up front.
+//   - sample() is called once per clock of the FIFO's domain by its owner;
+//     it accumulates the occupancy statistics (mean, maximum, full and empty
+//     cycles). push/pop counts are kept independently of sampling.
+//   - drained() / expect_drained(): data left in a FIFO at the end of a run is
+//     a lost transaction; expect_drained() throws naming the FIFO.
+#pragma once
+
+#include <algorithm>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "refmodel/error.hpp"
+
+namespace voxcast::rtl::sim {
+
+struct FifoStats {
+  std::uint64_t pushes = 0;
+  std::uint64_t pops = 0;
+  std::uint64_t sampled_cycles = 0;
+  std::uint64_t occupancy_sum = 0;  // sum over sampled cycles
+  std::uint64_t full_cycles = 0;    // sampled cycles with the FIFO full
+  std::uint64_t empty_cycles = 0;   // sampled cycles with the FIFO empty
+  std::size_t max_occupancy = 0;    // after any push
+
+  double mean_occupancy() const {
+    return sampled_cycles == 0
+               ? 0.0
+               : static_cast<double>(occupancy_sum) / static_cast<double>(sampled_cycles);
+  }
+};
+
+inline std::ostream& operator<<(std::ostream& os, const FifoStats& s) {
+  return os << "pushes " << s.pushes << ", pops " << s.pops << ", max occupancy " << s.max_occupancy
+            << ", mean occupancy " << s.mean_occupancy() << " over " << s.sampled_cycles
+            << " cycles (full " << s.full_cycles << ", empty " << s.empty_cycles << ")";
+}
+
+template <typename T>
+requires std::default_initializable<T> && std::movable<T>
+class Fifo {
+ public:
+  // Throws voxcast::Error for depth 0.
+  Fifo(std::string name, std::size_t depth) : name_(std::move(name)), slots_(depth) {
+    if (depth == 0) fail("depth 0 (a FIFO holds at least one entry)");
+  }
+
+  const std::string& name() const { return name_; }
+  std::size_t depth() const { return slots_.size(); }
+  std::size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  bool full() const { return count_ == slots_.size(); }
+  bool ready() const { return !full(); }   // the producer may push
+  bool valid() const { return !empty(); }  // the consumer may pop
+
+  void push(T value) {
+    if (full()) fail("push while full");
+    slots_[(head_ + count_) % slots_.size()] = std::move(value);
+    ++count_;
+    ++stats_.pushes;
+    stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
+  }
+
+  const T& front() const {
+    if (empty()) fail("front() while empty");
+    return slots_[head_];
+  }
+
+  T pop() {
+    if (empty()) fail("pop while empty");
+    T value = std::move(slots_[head_]);
+    head_ = (head_ + 1) % slots_.size();
+    --count_;
+    ++stats_.pops;
+    return value;
+  }
+
+  // One clock of the FIFO's domain: accumulate the occupancy statistics.
+  void sample() {
+    ++stats_.sampled_cycles;
+    stats_.occupancy_sum += count_;
+    if (full()) ++stats_.full_cycles;
+    if (empty()) ++stats_.empty_cycles;
+  }
+
+  bool drained() const { return empty(); }
+  void expect_drained() const {
+    if (!drained()) {
+      std::ostringstream os;
+      os << "holds " << count_ << " entr" << (count_ == 1 ? "y" : "ies")
+         << " at the end (expected drained)";
+      fail(os.str());
+    }
+  }
+
+  const FifoStats& stats() const { return stats_; }
+
+ private:
+  [[noreturn]] void fail(std::string_view what) const {
+    std::ostringstream os;
+    os << "FIFO '" << name_ << "' (depth " << slots_.size() << "): " << what;
+    throw Error(os.str());
+  }
+
+  std::string name_;
+  std::vector<T> slots_;
+  std::size_t head_ = 0;
+  std::size_t count_ = 0;
+  FifoStats stats_;
+};
+
+template <typename T>
+std::ostream& operator<<(std::ostream& os, const Fifo<T>& fifo) {
+  return os << "FIFO '" << fifo.name() << "' " << fifo.size() << "/" << fifo.depth() << ": "
+            << fifo.stats();
+}
+
+}  // namespace voxcast::rtl::sim
