@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
 #include "cosim/image_io.hpp"
+#include "cosim/warnings.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/error.hpp"
@@ -125,6 +127,8 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   std::optional<bittrue::VoxelMemory> memory;
   if (options.engine != Engine::Ref) {
     check_fixed_point(scene, sv, options.engine == Engine::Hls);
+    for (const std::string& w : fixed_point_warnings(scene, volume))
+      std::cerr << "voxcast: warning: " << w << "\n";
     memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
   }
 

@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
 #include "cosim/image_io.hpp"
+#include "cosim/warnings.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/scene/scene_toml.hpp"
@@ -71,6 +73,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   // is then not established and the report says so.
   r.hls_ran = hls_supports(scene.precision);
   check_fixed_point(scene, sv, false);
+  for (const std::string& w : fixed_point_warnings(scene, sv.volume))
+    std::cerr << "voxcast: warning: " << w << "\n";
   const ref::Volume& volume = sv.volume;
   const ref::GradientField& gradients = sv.gradients;
 

@@ -59,6 +59,9 @@ __extension__ typedef unsigned __int128 u128;
 constexpr int imax(int a, int b) { return a > b ? a : b; }
 constexpr int imin(int a, int b) { return a < b ? a : b; }
 
+// Tag of the internal constructor that stores an already canonical raw value.
+struct exact_tag {};
+
 // Working words: unsigned, arithmetic modulo 2^B, reinterpreted as signed where needed.
 template <int W>
 using word_t = std::conditional_t<(W <= 64), std::uint64_t, u128>;
@@ -455,9 +458,11 @@ constexpr U aligned(const T& x) noexcept {
   }
 }
 
+// Results of the operators below are exact in their result type (section 5), so the word
+// pattern is already the canonical one and is stored as is.
 template <class R, class U>
 constexpr R make_exact(U pattern) noexcept {
-  return R::from_raw(static_cast<typename R::raw_type>(pattern));
+  return R(exact_tag{}, static_cast<typename R::raw_type>(pattern));
 }
 
 // Sections 4-6: the binary operators are exact in their widened result type (division
@@ -823,6 +828,8 @@ class fixed_base {
   // Section 9: exact decode, one quantization and one overflow step; NaN/inf per its table.
   constexpr fixed_base(double d) noexcept : v_(from_double(d)) {}
   constexpr fixed_base(float f) noexcept : v_(from_double(static_cast<double>(f))) {}
+  // Internal (the operators of this header): v is already sign/zero-extended from W bits.
+  constexpr fixed_base(detail::exact_tag, raw_type v) noexcept : v_(v) {}
 
   // ---- Raw bits. from_raw keeps the low W bits of its argument (two's complement) and
   // reinterprets them; raw() returns V sign-extended (signed) or zero-extended (unsigned).
@@ -942,9 +949,8 @@ class fixed_base {
   constexpr fixed_base operator+() const noexcept { return *this; }
   // Exact in <W+1, I+1, signed>, so -MIN is representable.
   constexpr fixed_base<W + 1, I + 1, true> operator-() const noexcept {
-    using R = fixed_base<W + 1, I + 1, true>;
     using U = detail::word_t<W + 1>;
-    return R::from_raw(static_cast<typename R::raw_type>(U(U(0) - static_cast<U>(v_))));
+    return detail::make_exact<fixed_base<W + 1, I + 1, true>>(U(U(0) - static_cast<U>(v_)));
   }
   // Negation in the same width (wraps), as ap's getNeg().
   constexpr fixed_base<W, I, true, Q, O, N> getNeg() const noexcept {
@@ -1134,6 +1140,8 @@ class int_base {
   // ap sim gives +1 for d in (-0.5, 0) (section 9 bug); the clone returns the correct 0.
   constexpr int_base(double d) noexcept : v_(from_double(d)) {}
   constexpr int_base(float f) noexcept : v_(from_double(static_cast<double>(f))) {}
+  // Internal (the operators of this header): v is already sign/zero-extended from W bits.
+  constexpr int_base(detail::exact_tag, raw_type v) noexcept : v_(v) {}
 
   static constexpr int_base from_raw(raw_type bits) noexcept {
     int_base r;
@@ -1214,8 +1222,7 @@ class int_base {
   constexpr int_base operator+() const noexcept { return *this; }
   constexpr int_base<W + 1, true> operator-() const noexcept {
     using U = detail::word_t<W + 1>;
-    using R = int_base<W + 1, true>;
-    return R::from_raw(static_cast<typename R::raw_type>(U(U(0) - static_cast<U>(v_))));
+    return detail::make_exact<int_base<W + 1, true>>(U(U(0) - static_cast<U>(v_)));
   }
   constexpr int_base operator~() const noexcept {
     return from_raw(static_cast<raw_type>(~static_cast<word>(v_)));

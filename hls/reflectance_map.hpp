@@ -7,9 +7,11 @@
 // Layout of this header:
 //   1. ReflectanceParams<P>: every width and type of the unit, derived from P.
 //   2. The synthesizable unit: the IS registers, the two tables, rm_cell() (the
-//      cube-map cell of a gradient, §5.1-5.3) and reflect() (the two reads).
-//   3. host:: — loading the tables (bittrue::make_reflectance_maps, §5.4) and the
-//      registers. Not synthesized.
+//      cube-map cell of a gradient, §5.1-5.3, and with rm_bilinear its in-cell
+//      position, §5.5) and reflect() (one read per table, or four and a bilinear
+//      blend, §5.5).
+//   3. host:: — loading the tables (bittrue::make_reflectance_maps, §5.4 / §5.5)
+//      and the registers. Not synthesized.
 #pragma once
 
 #include <bit>
@@ -40,6 +42,13 @@ template <PrecisionProfile P>
 struct ReflectanceParams {
   static constexpr int res = P.rm_res;  // cells per cube-face edge
   static constexpr int cells = 6 * res * res;
+  // §5.5: rm_bilinear reads the entries at the cell's corners, (res + 1)^2 per face;
+  // nearest mode (VIZARD II) one entry per cell.
+  static constexpr bool bilinear = P.rm_bilinear != 0;
+  static constexpr int side = bilinear ? res + 1 : res;  // entries per face row
+  static constexpr int entries = 6 * side * side;        // per table
+  // Fraction bits of the in-cell position (0 in nearest mode: the division gives the cell).
+  static constexpr int wb = bilinear ? P.rm_weight_bits : 0;
   static constexpr int sf = P.sample_frac_bits;
   static constexpr int df = P.dir_frac_bits;
 
@@ -60,26 +69,40 @@ struct ReflectanceParams {
   // N[a] + |N[m]| in [0, 2 |N[m]|].
   using offset_t = ufixed<grad_int_bits + 1 + sf, grad_int_bits + 1>;
 
-  // §5.3's integer division on raw values (units of 2^-sf):
-  // numerator (N[a] + |N[m]|) · res, denominator 2 |N[m]|.
+  // §5.3's (§5.5's) integer division on raw values (units of 2^-sf):
+  // numerator (N[a] + |N[m]|) · res · 2^wb, denominator 2 |N[m]|; the quotient
+  // t = floor(position in cells · 2^wb) lies in [0, res · 2^wb].
   static constexpr int res_bits = rm_detail::bits_for(res);
   static constexpr int den_bits = grad_int_bits + 1 + sf;
-  static constexpr int num_bits = den_bits + res_bits;
+  static constexpr int num_bits = den_bits + res_bits + wb;
   using den_t = uint_t<den_bits>;
   using num_t = uint_t<num_bits>;
+  using pos_t = uint_t<rm_detail::bits_for(static_cast<long long>(res) << wb)>;  // t
   static constexpr int cell_bits = rm_detail::bits_for(res - 1);
   using cell_t = uint_t<cell_bits>;  // iu, iv
-  static constexpr int index_bits = rm_detail::bits_for(cells - 1);
+  static constexpr int index_bits = rm_detail::bits_for(entries - 1);
   using index_t = uint_t<index_bits>;
+  // §5.5: the in-cell position f = t·2^-wb - i in [0, 1] (1 only at the clamped last cell).
+  using weight_t = ufixed<wb + 1, 1>;
 
   // Table entries (§5.4): rm_int_bits.rm_frac_bits unsigned.
-  static constexpr int entry_bits = P.rm_int_bits + P.rm_frac_bits;
-  using entry_t = ufixed<entry_bits, P.rm_int_bits>;
+  static constexpr int ri = P.rm_int_bits;
+  static constexpr int entry_bits = ri + P.rm_frac_bits;
+  using entry_t = ufixed<entry_bits, ri>;
+  // §5.5's exact blend, as lerps e0 + (e1 - e0)·f: a convex combination of entries stays in
+  // the entries' range with wb more fraction bits per lerp; the result rounds once (RND).
+  using lerp1_t = ufixed<entry_bits + wb, ri>;
+  using lerp2_t = ufixed<entry_bits + 2 * wb, ri>;
+  using entry_rnd_t = ufixed<entry_bits, ri, RND>;
 
   // g · IS is the widest product: (grad_int_bits + sf) + (df + 1) bits.
   static_assert(grad_int_bits + sf + df + 1 <= 64, "gradient x IS product exceeds 64 bits");
   static_assert(num_bits <= 64, "cube-map division exceeds 64 bits");
+  // The blend's widest intermediate, the second lerp's sum: its product (lerp1 difference x
+  // weight) has (entry_bits + wb + 1) + (wb + 1) bits, the sum one more.
+  static_assert(!bilinear || entry_bits + 2 * wb + 3 <= 64, "bilinear blend exceeds 64 bits");
   static_assert(res >= 1 && res <= 256, "rm_res out of range");
+  static_assert(!bilinear || (wb >= 1 && wb <= 12), "rm_weight_bits out of range");
 };
 
 // ---- 2. The unit ----------------------------------------------------------------------------
@@ -90,22 +113,37 @@ struct ReflectanceRegisters {
   typename ReflectanceParams<P>::scale_t IS[3];
 };
 
-// Diffuse and specular tables, 6 rm_res^2 entries each, indexed
-// face·rm_res² + iv·rm_res + iu (§5.3). Two independent memories, both read in
-// the same cycle: the top-level kernel binds each to its own single-port RAM
-// (`#pragma HLS BIND_STORAGE variable=<map>.diffuse type=ram_1p impl=bram`, and
-// likewise .specular), written by the host only between frames.
+// Diffuse and specular tables, `entries` each. Nearest mode: 6 rm_res^2 entries,
+// indexed face·rm_res² + iv·rm_res + iu (§5.3). Bilinear mode: 6 (rm_res+1)^2
+// corner entries, indexed face·(rm_res+1)² + j·(rm_res+1) + i (§5.5). Two
+// independent memories, both read in the same cycle: the top-level kernel binds
+// each to its own RAM (`#pragma HLS BIND_STORAGE variable=<map>.diffuse
+// type=ram_1p impl=bram`, and likewise .specular), written by the host only
+// between frames.
+//
+// Bilinear mode reads four entries of each table per sample, the corners (i, j),
+// (i+1, j), (i, j+1), (i+1, j+1) of one cell: their corner parities (i&1, j&1)
+// are the four distinct pairs, so a vendor tool banks each table four ways by
+// corner parity (as §3.3 banks the voxels eight ways by voxel parity): bank
+// (i&1) | (j&1)<<1 holds corner (i, j) at word face·h² + (j>>1)·h + (i>>1) with
+// h = ceil((rm_res+1)/2), one single-port RAM each, and the four reads happen in
+// one cycle behind a 4x4 crossbar (in Vitis: the table declared as
+// [6][rm_res+1][rm_res+1] with `ARRAY_PARTITION cyclic factor=2` on the last two
+// dimensions). The C model keeps the flat array the host loads.
 template <PrecisionProfile P>
 struct ReflectanceMap {
-  typename ReflectanceParams<P>::entry_t diffuse[ReflectanceParams<P>::cells];
-  typename ReflectanceParams<P>::entry_t specular[ReflectanceParams<P>::cells];
+  typename ReflectanceParams<P>::entry_t diffuse[ReflectanceParams<P>::entries];
+  typename ReflectanceParams<P>::entry_t specular[ReflectanceParams<P>::entries];
 };
 
-// The cube-map cell of a gradient; valid = false when N = 0 (§5.2).
+// The cube-map cell of a gradient; valid = false when N = 0 (§5.2). Nearest
+// mode: index is the entry to read. Bilinear mode: index is the cell's corner
+// (i, j), fu and fv its in-cell position (§5.5); 0 in nearest mode.
 template <PrecisionProfile P>
 struct RmCell {
   bool valid;
   typename ReflectanceParams<P>::index_t index;
+  typename ReflectanceParams<P>::weight_t fu, fv;
 };
 
 // The unit's result: D and S of §5 (both 0 without a normal).
@@ -147,34 +185,74 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   const bool valid = !(mag[m] == 0);
 
   // §5.3: iu = min(floor((N[a] + |N[m]|)·res / (2|N[m]|)), res - 1), iv likewise,
-  // on the raw integers (both operands in units of 2^-sf).
+  // on the raw integers (both operands in units of 2^-sf). §5.5 (bilinear): the
+  // same division with wb more quotient bits, t = floor(·· 2^wb); the cell is
+  // min(t >> wb, res - 1) and the in-cell position f = t - (cell << wb) in units
+  // of 2^-wb (f = 2^wb, i.e. 1, only at the clamp).
   typename Params::den_t den = mag[m].range().to_uint64();
   den = den << 1;
   if (!valid) den = 1;  // no division by zero; the index is unused then
-  const typename Params::num_t last = Params::res - 1;
+  const typename Params::cell_t last = Params::res - 1;
   typename Params::cell_t cell[2];
+  typename Params::weight_t frac[2];
   const int uv_axis[2] = {a, b};
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = cell complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = frac complete)
   [[maybe_unused]] rm_cell_divide : for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename Params::offset_t off = n[uv_axis[j]] + mag[m];
     const typename Params::den_t off_raw = off.range().to_uint64();
-    const typename Params::num_t num = off_raw * uint_t<Params::res_bits>(Params::res);
-    const typename Params::num_t q = num / den;
-    cell[j] = q > last ? last : q;
+    typename Params::num_t num = off_raw * uint_t<Params::res_bits>(Params::res);
+    num = num << Params::wb;
+    const typename Params::pos_t t = num / den;  // <= res·2^wb
+    const typename Params::pos_t whole = t >> Params::wb;
+    cell[j] = whole > last ? last : typename Params::cell_t(whole);
+    const typename Params::pos_t f = t - (typename Params::pos_t(cell[j]) << Params::wb);
+    frac[j].range() = f.to_uint64();  // f <= 2^wb: fits wb + 1 bits
   }
 
-  // Face 2m + (N[m] < 0); index face·res² + iv·res + iu.
+  // Face 2m + (N[m] < 0); index face·side² + iv·side + iu (side = res, or res + 1 for the
+  // corner grid).
+  constexpr int side = Params::side;
   const typename Params::index_t face = 2 * m + (n[m].is_neg() ? 1 : 0);
   RmCell<P> out;
   out.valid = valid;
-  out.index = face * typename Params::index_t(Params::res * Params::res) +
-              cell[1] * typename Params::index_t(Params::res) + cell[0];
+  out.index = face * typename Params::index_t(side * side) +
+              cell[1] * typename Params::index_t(side) + cell[0];
+  out.fu = 0;
+  out.fv = 0;
+  if constexpr (Params::bilinear) {
+    out.fu = frac[0];
+    out.fv = frac[1];
+  }
   return out;
 }
 
-// §5: the two table reads (D = S = 0 without a normal). G is the interpolation
-// unit's gradient component type; it converts exactly into gradient_t when it has
+// §5.5: the bilinear blend of one table's four corner entries e[0..3] = (i, j),
+// (i+1, j), (i, j+1), (i+1, j+1): exact lerps e0 + (e1 - e0)·fu along u, then
+// along v (= the weighted sum with (1-fu)(1-fv), fu(1-fv), (1-fu)fv, fu·fv; any
+// exact order gives the same bits), one Q_RND to rm_frac_bits.
+template <PrecisionProfile P>
+typename ReflectanceParams<P>::entry_t rm_bilerp(
+    const typename ReflectanceParams<P>::entry_t (&e)[4],
+    const typename ReflectanceParams<P>::weight_t& fu,
+    const typename ReflectanceParams<P>::weight_t& fv) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  using Params = ReflectanceParams<P>;
+  typename Params::lerp1_t l1[2];
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = l1 complete)
+  [[maybe_unused]] rm_lerp_u : for (int j = 0; j < 2; ++j) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    l1[j] = e[2 * j] + (e[2 * j + 1] - e[2 * j]) * fu;
+  }
+  const typename Params::lerp2_t l2 = l1[0] + (l1[1] - l1[0]) * fv;
+  const typename Params::entry_rnd_t r = l2;  // Q_RND(·, rm_frac_bits); <= the largest entry
+  return r;
+}
+
+// §5: the table reads (D = S = 0 without a normal): one per table in nearest
+// mode, four and a blend in bilinear mode. G is the interpolation unit's
+// gradient component type; it converts exactly into gradient_t when it has
 // sample_frac_bits fraction bits (checked below) and fits.
 template <PrecisionProfile P, class G>
 Reflect<P> reflect(const ReflectanceMap<P>& map, const ReflectanceRegisters<P>& regs,
@@ -189,8 +267,25 @@ Reflect<P> reflect(const ReflectanceMap<P>& map, const ReflectanceRegisters<P>& 
   r.D = 0;
   r.S = 0;
   if (cell.valid) {
-    r.D = map.diffuse[cell.index.to_uint()];
-    r.S = map.specular[cell.index.to_uint()];
+    if constexpr (Params::bilinear) {
+      // The four corners of the cell: one read per parity bank (see ReflectanceMap).
+      constexpr unsigned side = static_cast<unsigned>(Params::side);
+      const unsigned offset[4] = {0u, 1u, side, side + 1u};
+      typename Params::entry_t d[4], s[4];
+      VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = d complete)
+      VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = s complete)
+      [[maybe_unused]] rm_corner_read : for (int c = 0; c < 4; ++c) {
+        VOXCAST_HLS_PRAGMA(HLS UNROLL)
+        const unsigned k = cell.index.to_uint() + offset[c];
+        d[c] = map.diffuse[k];
+        s[c] = map.specular[k];
+      }
+      r.D = rm_bilerp<P>(d, cell.fu, cell.fv);
+      r.S = rm_bilerp<P>(s, cell.fu, cell.fv);
+    } else {
+      r.D = map.diffuse[cell.index.to_uint()];
+      r.S = map.specular[cell.index.to_uint()];
+    }
   }
   return r;
 }
@@ -199,12 +294,13 @@ Reflect<P> reflect(const ReflectanceMap<P>& map, const ReflectanceRegisters<P>& 
 #ifndef __SYNTHESIS__
 namespace host {
 
-// Loads both tables from bittrue::make_reflectance_maps' raw integers. Returns
-// false (tables unchanged) if a size does not match.
+// Loads both tables from bittrue::make_reflectance_maps' raw integers (cell
+// entries, or corner entries in bilinear mode). Returns false (tables
+// unchanged) if a size does not match.
 template <PrecisionProfile P>
 bool load_reflectance_map(ReflectanceMap<P>& map, const std::vector<std::uint32_t>& diffuse,
                           const std::vector<std::uint32_t>& specular) {
-  constexpr int n = ReflectanceParams<P>::cells;
+  constexpr int n = ReflectanceParams<P>::entries;
   if (diffuse.size() != static_cast<std::size_t>(n) ||
       specular.size() != static_cast<std::size_t>(n))
     return false;

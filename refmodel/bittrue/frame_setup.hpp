@@ -60,7 +60,7 @@ struct FrameSetup {
   FrameRegisters regs;
   std::vector<Raw> rsqrt_seed;           // 2^rsqrt_seed_bits entries, dir_frac_bits (§1.2)
   std::vector<ClassEntry> class_table;   // 2^tf_addr_bits entries (§4)
-  std::vector<std::uint32_t> rm_diffuse;   // 6 rm_res^2 entries, rm_int_bits.rm_frac_bits (§5)
+  std::vector<std::uint32_t> rm_diffuse;   // rm_entries(profile), rm_int_bits.rm_frac_bits (§5)
   std::vector<std::uint32_t> rm_specular;  // likewise
 };
 

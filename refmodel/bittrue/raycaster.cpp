@@ -67,8 +67,11 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
     *trace = RayTrace{};
     trace->hit = ray.hit;
     trace->samples = ray.n;
-    trace->p0 = ray.p0;
-    trace->step = ray.s;
+    // A miss carries no position or step (docs/pipeline.md §1.6), in either engine.
+    if (ray.hit) {
+      trace->p0 = ray.p0;
+      trace->step = ray.s;
+    }
   }
   std::uint64_t taken = 0;
   std::array<std::uint32_t, 4> out{0, 0, 0, 0};

@@ -44,13 +44,18 @@ void make_reflectance_maps(const PrecisionProfile& profile, const ref::ShadingSe
                            std::vector<std::uint32_t>& specular) {
   const int res = profile.rm_res;
   const int rf = profile.rm_frac_bits;
-  const auto cells = static_cast<std::size_t>(6 * res * res);
+  // Nearest (§5.4): one entry per cell, at the cell centre. Bilinear (§5.5): one entry per
+  // cell corner, (res + 1)^2 per face; corner (i, j) at u = i·2/res - 1, v = j·2/res - 1.
+  const bool corners = profile.rm_bilinear != 0;
+  const int side = corners ? res + 1 : res;
+  const double offset = corners ? 0.0 : 0.5;
+  const auto entries = static_cast<std::size_t>(6 * side * side);
   const double hi = std::ldexp(1.0, profile.rm_int_bits) - std::ldexp(1.0, -rf);
   auto store = [&](double x) {
     return static_cast<std::uint32_t>(to_raw(sat(q_rnd(x, rf), 0.0, hi), rf));
   };
-  diffuse.assign(cells, 0);
-  specular.assign(cells, 0);
+  diffuse.assign(entries, 0);
+  specular.assign(entries, 0);
   std::size_t index = 0;
   for (int face = 0; face < 6; ++face) {
     // Face 2m + s: major axis m with sign +1 (s = 0) or -1 (s = 1); the other axes a < b.
@@ -58,12 +63,12 @@ void make_reflectance_maps(const PrecisionProfile& profile, const ref::ShadingSe
     const double sign = (face & 1) ? -1.0 : 1.0;
     const int a = m == 0 ? 1 : 0;
     const int b = m == 2 ? 1 : 2;
-    for (int iv = 0; iv < res; ++iv) {
-      for (int iu = 0; iu < res; ++iu, ++index) {
+    for (int iv = 0; iv < side; ++iv) {
+      for (int iu = 0; iu < side; ++iu, ++index) {
         ref::Vec3 n(0.0);
         n[m] = sign;
-        n[a] = (iu + 0.5) * 2.0 / res - 1.0;
-        n[b] = (iv + 0.5) * 2.0 / res - 1.0;
+        n[a] = (iu + offset) * 2.0 / res - 1.0;
+        n[b] = (iv + offset) * 2.0 / res - 1.0;
         const ref::Reflectance r = ref::reflectance(shading, glm::normalize(n));
         diffuse[index] = store(r.diffuse);
         specular[index] = store(r.specular);

@@ -1,7 +1,9 @@
 #include "refmodel/bittrue/shading.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <vector>
 
 #include "refmodel/bittrue/quantize.hpp"
 
@@ -48,23 +50,62 @@ BtCell bt_rm_cell(const PrecisionProfile& p, const Raw3& IS, const std::array<do
   const std::size_t a = m == 0 ? 1 : 0;
   const std::size_t b = m == 2 ? 1 : 2;
   const std::int64_t res = p.rm_res;
-  auto cell_of = [&](std::size_t axis) {
-    const std::int64_t q = div_trunc0((n[axis] + mag[m]) * res, 2 * mag[m]);  // both >= 0: floor
-    return q > res - 1 ? res - 1 : q;
+  // §5.3 / §5.5: the position along an axis in cells, floor((N[axis] + |N[m]|)·res·2^wb /
+  // (2|N[m]|)) in units of 2^-wb cells (wb = 0 in nearest mode), an exact integer division of
+  // non-negative raw values (TRUNC0 = floor). At most 2^36·2^8·2^12 = 2^56 at the limits.
+  const int wb = p.rm_bilinear ? p.rm_weight_bits : 0;
+  struct Axis {
+    std::int64_t i, f;  // cell (clamped to res - 1) and in-cell position (wb fraction bits)
   };
+  auto position = [&](std::size_t axis) {
+    const std::int64_t t = div_trunc0((n[axis] + mag[m]) * res * (std::int64_t{1} << wb),
+                                      2 * mag[m]);
+    const std::int64_t i = std::min(t >> wb, res - 1);
+    return Axis{i, t - i * (std::int64_t{1} << wb)};
+  };
+  const Axis u = position(a), v = position(b);
   const std::int64_t face = 2 * static_cast<std::int64_t>(m) + (n[m] < 0 ? 1 : 0);
+  const std::int64_t stride = p.rm_bilinear ? res + 1 : res;  // entries per face row
   cell.valid = true;
-  cell.index = static_cast<int>(face * res * res + cell_of(b) * res + cell_of(a));
+  cell.index = static_cast<int>((face * stride + v.i) * stride + u.i);
+  if (p.rm_bilinear) {
+    cell.fu = u.f;
+    cell.fv = v.f;
+  }
   return cell;
 }
 
 BtReflect bt_reflectance(const FrameSetup& fs, const std::array<double, 3>& g) {
-  const BtCell cell = bt_rm_cell(fs.profile, fs.regs.IS, g);
+  const PrecisionProfile& p = fs.profile;
+  const BtCell cell = bt_rm_cell(p, fs.regs.IS, g);
   BtReflect r;
   if (!cell.valid) return r;
+  const int rf = p.rm_frac_bits;
   const auto i = static_cast<std::size_t>(cell.index);
-  r.D = from_raw(fs.rm_diffuse[i], fs.profile.rm_frac_bits);
-  r.S = from_raw(fs.rm_specular[i], fs.profile.rm_frac_bits);
+  if (!p.rm_bilinear) {
+    r.D = from_raw(fs.rm_diffuse[i], rf);
+    r.S = from_raw(fs.rm_specular[i], rf);
+    return r;
+  }
+  // §5.5: the four corner entries with weights (1-fu)(1-fv), fu(1-fv), (1-fu)fv, fu·fv, summed
+  // exactly, one Q_RND to rf bits. Each product has at most (rm_int_bits + rf) + 2(wb + 1) <= 50
+  // significant bits and every term lies on the 2^-(rf + 2wb) grid, so the products, the
+  // partial sums (non-negative, at most the total) and the total (below 2^rm_int_bits, at most
+  // rm_int_bits + rf + 2wb <= 48 bits) are exact doubles. The result is a convex combination of
+  // entries on the rf grid, so it never exceeds the largest of them: no saturation.
+  const int wb = p.rm_weight_bits;
+  const double fu = from_raw(cell.fu, wb), fv = from_raw(cell.fv, wb);
+  const std::array<double, 4> w = {(1.0 - fu) * (1.0 - fv), fu * (1.0 - fv), (1.0 - fu) * fv,
+                                   fu * fv};
+  const std::size_t row = static_cast<std::size_t>(p.rm_res) + 1;
+  const std::array<std::size_t, 4> corner = {i, i + 1, i + row, i + row + 1};
+  auto bilerp = [&](const std::vector<std::uint32_t>& table) {
+    double sum = 0.0;
+    for (std::size_t c = 0; c < 4; ++c) sum += from_raw(table[corner[c]], rf) * w[c];
+    return q_rnd(sum, rf);
+  };
+  r.D = bilerp(fs.rm_diffuse);
+  r.S = bilerp(fs.rm_specular);
   return r;
 }
 

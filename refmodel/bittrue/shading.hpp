@@ -26,7 +26,12 @@ double bt_alpha(const PrecisionProfile& p, const ClassEntry& e);
 // --- §5 Reflectance map ----------------------------------------------------------------
 struct BtCell {
   bool valid = false;  // false when N = 0 (§5.2)
-  int index = 0;       // face·rm_res² + iv·rm_res + iu
+  // rm_bilinear = 0: the entry face·rm_res² + iv·rm_res + iu (§5.3).
+  // rm_bilinear = 1: the cell's lower corner face·(rm_res+1)² + iv·(rm_res+1) + iu (§5.5).
+  int index = 0;
+  // rm_bilinear = 1: the in-cell position, raw with rm_weight_bits fraction bits
+  // (0 .. 2^rm_weight_bits); 0 in nearest mode.
+  std::int64_t fu = 0, fv = 0;
 };
 // The cube-map cell of an interpolated gradient g (index space, on the sf grid),
 // world-scaled by the IS registers (dir_frac_bits raw).

@@ -38,6 +38,11 @@ constexpr int voxel_word_bits(const PrecisionProfile& p) {
 constexpr int tf_entry_bits(const PrecisionProfile& p) {
   return 3 * p.color_bits + p.alpha_bits + 3 * p.k_bits;
 }
-constexpr int rm_entries(const PrecisionProfile& p) { return 6 * p.rm_res * p.rm_res; }
+// Entries per reflectance-map table: one per cell (nearest) or per cell
+// corner (bilinear), docs/pipeline.md §5.
+constexpr int rm_entries(const PrecisionProfile& p) {
+  const int n = p.rm_bilinear ? p.rm_res + 1 : p.rm_res;
+  return 6 * n * n;
+}
 
 }  // namespace voxcast

@@ -32,6 +32,10 @@ struct PrecisionProfile {
   int rm_res = 16;            // cells along each edge of a cube-map face (6*rm_res^2 cells)
   int rm_frac_bits = 8;       // fraction bits of a reflectance-map entry
   int rm_int_bits = 0;        // integer bits of an entry (>0 when light intensities sum past 1)
+  int rm_bilinear = 0;        // 0: the nearest cell's entry (VIZARD II); 1: bilinear between the
+                              // entries at the cell's four corners, 6*(rm_res+1)^2 per table (§5.5)
+  int rm_weight_bits = 6;     // fraction bits of the in-cell position, the bilinear weights
+                              // (used only when rm_bilinear = 1)
   int shade_bits = 8;         // fraction bits of a shaded colour channel
   // --- Compositor and output (§7-8) ---
   int acc_bits = 12;          // fraction bits of the accumulated colour and opacity

@@ -48,21 +48,28 @@ AxisWeight axis_weight(double x, int n) {
 }
 }  // namespace
 
+template <typename T>
+T lerp(const T& a, const T& b, double f) {
+  return a + f * (b - a);  // exactly a when a == b: constant data stay constant
+}
+
 Sample interpolate(const Volume& volume, const GradientField& gradients, const Vec3& p) {
   const AxisWeight ax = axis_weight(p.x, volume.dims[0]);
   const AxisWeight ay = axis_weight(p.y, volume.dims[1]);
   const AxisWeight az = axis_weight(p.z, volume.dims[2]);
+  // Seven lerps, x then y then z (the interpolation processor's order).
+  double v[2][2];
+  Vec3 g[2][2];
+  for (int dz = 0; dz < 2; ++dz)
+    for (int dy = 0; dy < 2; ++dy) {
+      const int y = dy ? ay.i1 : ay.i0, z = dz ? az.i1 : az.i0;
+      const std::size_t i0 = volume.index(ax.i0, y, z), i1 = volume.index(ax.i1, y, z);
+      v[dz][dy] = lerp<double>(volume.data[i0], volume.data[i1], ax.f);
+      g[dz][dy] = lerp(Vec3(gradients.g[i0]), Vec3(gradients.g[i1]), ax.f);
+    }
   Sample s;
-  for (int k = 0; k < 8; ++k) {
-    const int x = (k & 1) ? ax.i1 : ax.i0;
-    const int y = (k & 2) ? ay.i1 : ay.i0;
-    const int z = (k & 4) ? az.i1 : az.i0;
-    const double w = ((k & 1) ? ax.f : 1.0 - ax.f) * ((k & 2) ? ay.f : 1.0 - ay.f) *
-                     ((k & 4) ? az.f : 1.0 - az.f);
-    const std::size_t i = volume.index(x, y, z);
-    s.value += w * volume.data[i];
-    s.gradient += w * Vec3(gradients.g[i]);
-  }
+  s.value = lerp(lerp(v[0][0], v[0][1], ay.f), lerp(v[1][0], v[1][1], ay.f), az.f);
+  s.gradient = lerp(lerp(g[0][0], g[0][1], ay.f), lerp(g[1][0], g[1][1], ay.f), az.f);
   return s;
 }
 

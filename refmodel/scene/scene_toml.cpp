@@ -92,7 +92,12 @@ class TableReader {
     return path_.empty() ? key : path_ + "." + key;
   }
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw Error(origins_.where(key_path(key), node(key)) + ": " + key_path(key) + " " + what);
+    fail_at(key, node(key), what);
+  }
+  // `n` locates the error (an array element has no key of its own to look up).
+  [[noreturn]] void fail_at(const std::string& key, const toml::node* n,
+                            const std::string& what) const {
+    throw Error(origins_.where(key_path(key), n) + ": " + key_path(key) + " " + what);
   }
 
   double number(const std::string& key, double def, double lo, double hi,
@@ -100,7 +105,7 @@ class TableReader {
     const toml::node* n = node(key);
     if (!n) return def;
     const double v = as_number(key, *n);
-    check_range(key, v, lo, hi, lo_open, hi_open);
+    check_range(key, n, v, lo, hi, lo_open, hi_open);
     return v;
   }
 
@@ -139,7 +144,7 @@ class TableReader {
       const toml::node& e = *a->get(i);
       const std::string ek = key + "[" + std::to_string(i) + "]";
       v[static_cast<int>(i)] = as_number(ek, e);
-      check_range(ek, v[static_cast<int>(i)], lo, hi, false, false);
+      check_range(ek, &e, v[static_cast<int>(i)], lo, hi, false, false);
     }
     return v;
   }
@@ -150,12 +155,13 @@ class TableReader {
     if (!a || a->size() != 3) fail(key, "must be an array of 3 integers");
     std::array<int, 3> v{};
     for (std::size_t i = 0; i < 3; ++i) {
-      const auto e = a->get(i)->value_exact<int64_t>();
+      const toml::node* en = a->get(i);
+      const auto e = en->value_exact<int64_t>();
       const std::string ek = key + "[" + std::to_string(i) + "]";
-      if (!e) fail(ek, "must be an integer");
+      if (!e) fail_at(ek, en, "must be an integer");
       if (*e < lo || *e > hi)
-        fail(ek, "= " + std::to_string(*e) + " is outside [" + std::to_string(lo) + ", " +
-                     std::to_string(hi) + "]");
+        fail_at(ek, en, "= " + std::to_string(*e) + " is outside [" + std::to_string(lo) + ", " +
+                            std::to_string(hi) + "]");
       v[i] = static_cast<int>(*e);
     }
     return v;
@@ -202,16 +208,16 @@ class TableReader {
     else if (auto d = n.value_exact<double>())
       v = *d;
     else
-      fail(key, "must be a number, not " + type_name(n));
-    if (!std::isfinite(v)) fail(key, "= " + fmt(v) + " is not a finite number");
+      fail_at(key, &n, "must be a number, not " + type_name(n));
+    if (!std::isfinite(v)) fail_at(key, &n, "= " + fmt(v) + " is not a finite number");
     return v;
   }
-  void check_range(const std::string& key, double v, double lo, double hi, bool lo_open,
-                   bool hi_open) const {
+  void check_range(const std::string& key, const toml::node* n, double v, double lo, double hi,
+                   bool lo_open, bool hi_open) const {
     const bool bad = lo_open ? !(v > lo) : !(v >= lo);
     const bool bad_hi = hi_open ? !(v < hi) : !(v <= hi);
     if (bad || bad_hi)
-      fail(key, "= " + fmt(v) + " is outside " + (lo_open ? "(" : "[") + fmt(lo) + ", " +
+      fail_at(key, n, "= " + fmt(v) + " is outside " + (lo_open ? "(" : "[") + fmt(lo) + ", " +
                     fmt(hi) + (hi_open ? ")" : "]"));
   }
   void reject_unknown_keys() const {

@@ -117,6 +117,13 @@ void check_header(const std::string& path, const nifti_1_header& h) {
     throw Error(path + ": scl_slope = " + num(h.scl_slope) + " is not a number");
   if (h.scl_slope != 0.0f && !std::isfinite(h.scl_inter))
     throw Error(path + ": scl_inter = " + num(h.scl_inter) + " is not a number");
+  // Single-file data start after the 348-byte header and the 4-byte extension
+  // flag; niftilib silently falls back to byte 348 for a smaller offset, which
+  // shifts the whole volume by 4 bytes.
+  if (std::memcmp(h.magic, "n+1", 4) == 0 &&
+      (!std::isfinite(h.vox_offset) || h.vox_offset < 352.0f || h.vox_offset > 1e9f))
+    throw Error(path + ": vox_offset = " + num(h.vox_offset) +
+                " is not valid (single-file data start at byte 352 or later)");
 }
 
 // Step 2: the voxel data, exactly nvox values or an Error.

@@ -142,10 +142,20 @@ Planted plant(bool reflectance) {
           return p;
         }
         if (st.diffuse > 0.0) {
-          // Every entry holding this diffuse value: the cell the sample read.
-          for (auto& d : p.bad.setup.rm_diffuse)
-            if (d == static_cast<std::uint32_t>(std::ldexp(st.diffuse, s.precision.rm_frac_bits)))
-              d ^= 1u;
+          // The entries the sample read (its cell, or with rm_bilinear the cell's four
+          // corners, docs/pipeline.md §5.5), all set to the diffuse value read with its LSB
+          // flipped: the unit's D then changes by one LSB in either mode.
+          const PrecisionProfile& pr = p.good.setup.profile;
+          const bittrue::BtCell c = bittrue::bt_rm_cell(pr, p.good.setup.regs.IS, st.gradient);
+          const std::uint32_t bad =
+              static_cast<std::uint32_t>(std::ldexp(st.diffuse, pr.rm_frac_bits)) ^ 1u;
+          const auto i = static_cast<std::size_t>(c.index);
+          const auto row = static_cast<std::size_t>(pr.rm_res) + 1;
+          if (pr.rm_bilinear)
+            for (const std::size_t k : {i, i + 1, i + row, i + row + 1})
+              p.bad.setup.rm_diffuse[k] = bad;
+          else
+            p.bad.setup.rm_diffuse[i] = bad;
           return p;
         }
       }

@@ -1,9 +1,10 @@
 // Quantization and overflow of voxcast::hls::fixed / ufixed, checked two ways:
-//  1. exhaustively for W = 1..6, I = -2..W+2, every Q mode x every O mode (with N = 0, 1, 2),
-//     signed and unsigned targets, from every raw pattern of several wider/narrower source
-//     formats, from C integers and from a set of doubles (specials included), against an
-//     independent long-double reference written from the tables of
-//     /work/shared/fixed-point-semantics.md sections 2, 3 and 9;
+//  1. exhaustively for W = 1..6, I = -2..W+2, every Q mode x the O modes SAT, SAT_ZERO,
+//     SAT_SYM, WRAP (and WRAP with N = 1, 2, WRAP_SM with N = 0, 1, 2 under TRN and RND),
+//     signed and unsigned targets: every raw pattern of a wider signed and a wider unsigned
+//     source, C ints and a set of doubles (specials included), against an independent
+//     long-double reference written from the tables of /work/shared/fixed-point-semantics.md
+//     sections 2, 3 and 9 ("section N" below);
 //  2. the worked examples of the specification as explicit assertions.
 #include <gtest/gtest.h>
 

@@ -33,6 +33,14 @@
 
 namespace {
 
+// make_frame_registers reads only the render inputs here; one named default
+// scene (a temporary Scene{} trips GCC 12's -Wmaybe-uninitialized on its strings).
+const voxcast::ref::Scene& no_scene() {
+  static const voxcast::ref::Scene scene;
+  return scene;
+}
+
+
 using namespace voxcast;
 using bittrue::Raw;
 using ref::Vec3;
@@ -229,7 +237,7 @@ struct BitTrueFrame {
 };
 
 BitTrueFrame setup(const PrecisionProfile& p, const Frame& f) {
-  return {bittrue::make_frame_registers(p, ref::Scene{}, f.in), bittrue::make_rsqrt_seed(p)};
+  return {bittrue::make_frame_registers(p, no_scene(), f.in), bittrue::make_rsqrt_seed(p)};
 }
 
 // ---- (a) bit-exact -----------------------------------------------------------------------------
@@ -633,7 +641,7 @@ TEST(GeometrySetup, RegistersOfAnAxisAlignedParallelCamera) {
   c.width = c.height = 5;
   c.oversampling = 2.0;
   const auto f = make_frame(c);
-  const bittrue::FrameRegisters r = bittrue::make_frame_registers(kVizard2, ref::Scene{}, f->in);
+  const bittrue::FrameRegisters r = bittrue::make_frame_registers(kVizard2, no_scene(), f->in);
   const int pf = kVizard2.pos_frac_bits, df = kVizard2.dir_frac_bits;
   EXPECT_FALSE(r.perspective);
   EXPECT_EQ(r.O, (bittrue::Raw3{0, -(10 << pf), 4 << pf}));
@@ -656,8 +664,8 @@ TEST(GeometrySetup, RejectsAnEyeBeyondTheOriginRegister) {
   c.eye = {8.0, -5000.0, 8.0};  // vizard2: origins within +-2^12
   c.center = {8.0, 8.0, 8.0};
   const auto f = make_frame(c);
-  EXPECT_THROW(bittrue::make_frame_registers(kVizard2, ref::Scene{}, f->in), Error);
-  EXPECT_NO_THROW(bittrue::make_frame_registers(kPrecise, ref::Scene{}, f->in));  // 2^13
+  EXPECT_THROW(bittrue::make_frame_registers(kVizard2, no_scene(), f->in), Error);
+  EXPECT_NO_THROW(bittrue::make_frame_registers(kPrecise, no_scene(), f->in));  // 2^13
 }
 
 TEST(GeometrySetup, RejectsProfilesOutsideTheSpecConstraints) {

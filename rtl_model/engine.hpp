@@ -1,0 +1,53 @@
+// The rtl engine: the cycle model of the VIZARD II card rendering one frame.
+// Same inputs as the hls engine (the host's FrameSetup and VoxelMemory), the
+// same image bit for bit, plus the card's timing (RtlStats).
+//
+// The runtime precision profile selects one of the compiled instantiations of
+// the pipeline (the presets vizard2, balanced, precise), as cosim's hls engine
+// does; any other profile is an error naming the compiled ones. The
+// simulation of a frame is single-threaded and deterministic: the same cycles
+// and bits on every run and host.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "refmodel/bittrue/frame_setup.hpp"
+#include "refmodel/precision/profile.hpp"
+#include "refmodel/render/quant_image.hpp"
+#include "rtl_model/layout/address_mapping.hpp"
+#include "rtl_model/pipeline/config.hpp"
+#include "rtl_model/pipeline/stats.hpp"
+
+namespace voxcast::rtl {
+
+using pipeline::RtlStats;
+
+struct RtlConfig {
+  pipeline::PipelineConfig pipeline;  // ray slots, traversal, latencies, DIMM and controller
+  layout::MappingSpec mapping;        // "linear" (the baseline), "bricked", "morton"
+  std::string scheduler = "in-order"; // sched::make_scheduler
+  std::string refresh = "eager";      // sched::make_refresh_policy
+};
+
+std::ostream& operator<<(std::ostream& os, const RtlConfig& c);
+
+// The VIZARD II baseline: in-order open-page controllers, eager refresh, scan-line
+// traversal, the linear layout, PC100 CL2 at 100 MHz, BL 1 (the defaults).
+RtlConfig vizard2_baseline();
+
+struct RtlResult {
+  ref::QuantImage image;
+  RtlStats stats;
+};
+
+// One frame. Throws voxcast::Error for a profile that is not compiled in, an
+// unknown policy or mapping, a volume that does not fit the DIMMs, a deadlock
+// or state left in the pipeline at the end.
+RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
+                     const RtlConfig& config = {});
+
+bool rtl_supports(const PrecisionProfile& profile);
+std::string rtl_supported_profiles();
+
+}  // namespace voxcast::rtl

@@ -1,0 +1,38 @@
+#include "rtl_model/layout/bricked_mapping.hpp"
+
+#include <bit>
+#include <string>
+
+#include "refmodel/error.hpp"
+
+namespace voxcast::rtl::layout {
+
+BrickedMapping::BrickedMapping(const WordGrid& grid, const sdram::Geometry& geometry,
+                               std::array<std::uint32_t, 3> brick)
+    : AddressMapping(grid, geometry) {
+  const std::uint32_t n[3] = {grid.nx, grid.ny2, grid.nz2};
+  std::uint64_t space = 1;
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (!std::has_single_bit(brick[k]))
+      throw Error("address mapping 'bricked': brick edge " + std::to_string(brick[k]) +
+                  " is not a power of two");
+    shift_[k] = static_cast<std::uint32_t>(std::countr_zero(brick[k]));
+    bricks_[k] = (n[k] + brick[k] - 1u) >> shift_[k];
+    space *= std::uint64_t{bricks_[k]} << shift_[k];
+  }
+  check_fits(name(), space, geometry);
+}
+
+std::uint64_t BrickedMapping::index(const WordCoord& c) const {
+  const std::uint32_t v[3] = {c.x, c.y2, c.z2};
+  std::uint64_t brick = 0, inner = 0;
+  // Step 1: the brick's number, x fastest; step 2: the word inside it, x fastest.
+  for (int k = 2; k >= 0; --k) {
+    const auto i = static_cast<std::size_t>(k);
+    brick = brick * bricks_[i] + (v[i] >> shift_[i]);
+    inner = (inner << shift_[i]) | (v[i] & ((1u << shift_[i]) - 1u));
+  }
+  return (brick << (shift_[0] + shift_[1] + shift_[2])) | inner;
+}
+
+}  // namespace voxcast::rtl::layout

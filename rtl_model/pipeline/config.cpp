@@ -1,0 +1,49 @@
+#include "rtl_model/pipeline/config.hpp"
+
+#include <ostream>
+
+#include "refmodel/error.hpp"
+
+namespace voxcast::rtl::pipeline {
+
+const char* to_string(Traversal t) { return t == Traversal::kScanline ? "scanline" : "tiles"; }
+
+Traversal parse_traversal(const std::string& name) {
+  if (name == "scanline") return Traversal::kScanline;
+  if (name == "tiles") return Traversal::kTiles;
+  throw Error("unknown ray traversal '" + name + "' (known: scanline, tiles)");
+}
+
+std::vector<std::pair<int, int>> pixel_order(int width, int height, Traversal t, int tile) {
+  std::vector<std::pair<int, int>> order;
+  order.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  if (t == Traversal::kScanline) {
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) order.emplace_back(x, y);
+    return order;
+  }
+  if (tile < 1) throw Error("ray traversal 'tiles': tile edge must be at least 1");
+  for (int ty = 0; ty < height; ty += tile)
+    for (int tx = 0; tx < width; tx += tile)
+      for (int y = ty; y < std::min(ty + tile, height); ++y)
+        for (int x = tx; x < std::min(tx + tile, width); ++x) order.emplace_back(x, y);
+  return order;
+}
+
+std::ostream& operator<<(std::ostream& os, const UnitLatencies& l) {
+  return os << "latencies: ray setup " << l.ray_setup << " (every " << l.ray_setup_interval
+            << "), address " << l.address << ", interpolation " << l.interpolation
+            << ", classification " << l.classification << ", shading " << l.shading
+            << ", compositing 1";
+}
+
+std::ostream& operator<<(std::ostream& os, const PipelineConfig& c) {
+  os << c.ray_slots << " ray slots, " << to_string(c.traversal);
+  if (c.traversal == Traversal::kTiles) os << " " << c.tile;
+  return os << " traversal, issue burst " << c.issue_burst << ", sample buffer "
+            << c.sample_buffer << ", FIFO skid " << c.fifo_depth << ", output " << c.output_depth
+            << ", " << c.latency << "; controller queue " << c.controller.queue_depth
+            << ", return " << c.controller.return_depth;
+}
+
+}  // namespace voxcast::rtl::pipeline

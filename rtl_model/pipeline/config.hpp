@@ -1,0 +1,79 @@
+// Parameters of the ray-casting pipeline model (rtl_model/pipeline/ray_pipeline.hpp).
+//
+// Latencies are the model's assumptions for an FPGA implementation of the hls
+// units at the 100 MHz core clock (VIZARD II runs its core at the SDRAM clock,
+// 2001 paper §2.3); every unit is pipelined at one sample (or ray) per clock,
+// as hls::march_ray's PIPELINE II=1 states. They move the fill and drain of the
+// pipeline, not its throughput, which the memory sets.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rtl_model/pipeline/memory_port.hpp"
+#include "rtl_model/sdram/controller.hpp"
+#include "rtl_model/sdram/dimm.hpp"
+
+namespace voxcast::rtl::pipeline {
+
+enum class Traversal : std::uint8_t {
+  kScanline,  // rows of the image, left to right (the baseline)
+  kTiles,     // tiles of tile x tile pixels, tiles and pixels inside in scan-line order
+};
+
+const char* to_string(Traversal t);
+// "scanline" | "tiles"; throws voxcast::Error otherwise.
+Traversal parse_traversal(const std::string& name);
+
+// The order in which the ray setup unit takes the pixels: (x, y) pairs.
+std::vector<std::pair<int, int>> pixel_order(int width, int height, Traversal t, int tile);
+
+struct UnitLatencies {
+  // Ray setup: direction, rsqrt (two Newton steps), six clip divisions
+  // (docs/pipeline.md §1), pipelined; a new ray every `ray_setup_interval`.
+  int ray_setup = 24;
+  int ray_setup_interval = 1;
+  // Stepping + address generator + mapping to (bank, row, column) (§2-3.3).
+  int address = 2;
+  // Crossbar + three lerp levels + rounding (§3.5).
+  int interpolation = 4;
+  // Classification SRAM read (§4).
+  int classification = 2;
+  // Reflectance-map address, table read, shader multiplies (§5-6).
+  int shading = 4;
+  // The compositor's accumulation is a one-clock recurrence (§7): one sample
+  // per clock of the same ray.
+};
+
+std::ostream& operator<<(std::ostream& os, const UnitLatencies& l);
+
+struct PipelineConfig {
+  int ray_slots = 16;       // rays in flight (set up, issuing or draining)
+  Traversal traversal = Traversal::kScanline;
+  int tile = 8;             // kTiles: tile edge in pixels
+  // Samples the address generator issues from one ray before it turns to the
+  // next ray with samples left; 0: a ray is issued to its end (or its early
+  // termination) before the next one starts.
+  int issue_burst = 0;
+  int sample_buffer = 64;   // samples in flight between address generator and interpolation
+  int fifo_depth = 4;       // skid entries between stages (added to each stage's latency)
+  int output_depth = 16;    // finished pixels waiting for the frame buffer
+  // No FIFO moved and no command issued for this many cycles: deadlock.
+  std::int64_t deadlock_cycles = 100'000;
+  // Simulation speed only, never the result (the tests check equal cycles,
+  // commands and image with both off): skip the cycles in which nothing can
+  // move (RayPipeline::run, pipeline/reference_port.hpp), and run in-order +
+  // eager memory on the event-driven port (pipeline/fast_in_order_port.hpp).
+  bool fast_forward = true;
+  MemoryModel memory_model = MemoryModel::kAuto;
+  UnitLatencies latency;
+  sdram::DimmConfig dimm;                // each of the four DIMMs
+  sdram::ControllerConfig controller;    // each DIMM's controller
+};
+
+std::ostream& operator<<(std::ostream& os, const PipelineConfig& c);
+
+}  // namespace voxcast::rtl::pipeline

@@ -1,0 +1,25 @@
+#include "rtl_model/pipeline/memory_port.hpp"
+
+#include "rtl_model/pipeline/fast_in_order_port.hpp"
+#include "rtl_model/pipeline/reference_port.hpp"
+#include "rtl_model/sched/registry.hpp"
+
+namespace voxcast::rtl::pipeline {
+
+std::unique_ptr<MemoryPort> make_memory_port(MemoryModel model, const std::string& scheduler,
+                                             const std::string& refresh,
+                                             const sdram::DimmConfig& dimm,
+                                             const sdram::ControllerConfig& controller,
+                                             bool skip_idle_ticks) {
+  // Both names are checked even when the fast port is used.
+  auto s = sched::make_scheduler(scheduler);
+  auto r = sched::make_refresh_policy(refresh);
+  const bool in_order_eager = scheduler == "in-order" && refresh == "eager";
+  if (model == MemoryModel::kAuto && in_order_eager)
+    return std::make_unique<FastInOrderPort>(dimm, controller);
+  return std::make_unique<ReferencePort>(
+      std::make_unique<sdram::Controller>(dimm, std::move(s), std::move(r), controller),
+      skip_idle_ticks && in_order_eager, controller.queue_depth, controller.return_depth);
+}
+
+}  // namespace voxcast::rtl::pipeline

@@ -1,0 +1,669 @@
+// The VIZARD II ray-casting pipeline as a clocked model at the core clock
+// (= the SDRAM clock, 100 MHz on the card):
+//
+//   ray setup -> [ray slots] -> address generator -> 4 request FIFOs ->
+//   4 DIMM controllers -> sample buffer (a sample's four words matched back)
+//   -> interpolation -> classification -> shading -> compositor -> output
+//
+// Every arithmetic result comes from the hls units (hls::ray_setup,
+// hls::address_generator, hls::gather + hls::interpolation_processor on a bank
+// view of the four DIMM words, hls::classify, hls::reflect, hls::shade,
+// hls::composite, hls::ert_reached, hls::mip_update / mip_pixel, hls::output),
+// called in the order hls::cast_ray calls them, so the image equals the hls
+// engine's bit for bit. Control, ordering and timing are this model's:
+//   - Ray setup takes the pixels in traversal order, one every
+//     ray_setup_interval clocks; a ray that enters the volume waits for a free
+//     ray slot and is ready `ray_setup` clocks later. A ray that misses takes
+//     no slot and leaves a background pixel after the same latency.
+//   - The address generator issues one sample per clock from the oldest ready
+//     ray (issue_burst samples at a time, or the whole ray), one request to
+//     each DIMM, if the sample buffer and all four request FIFOs have room.
+//   - The controllers (rtl_model/sdram) serve the requests; each completion
+//     fills its sample's word by the request id (any order). The interpolation
+//     stage takes samples in issue order once all four words are in.
+//   - Samples of a ray that has ended by early ray termination are dropped at
+//     interpolation or at the compositor; the ray's slot is freed when none of
+//     its samples is left in flight.
+//   - Each unit is a pipeline of its latency with one result per clock; the
+//     FIFO after it has latency + fifo_depth entries (valid/ready).
+// A frame ends when the last pixel is written and every sample still in
+// flight behind an early-terminated ray has drained. No progress for
+// deadlock_cycles is an error, and so is anything left in a FIFO, a controller
+// or a ray slot at the end.
+//
+// Units are evaluated from the output back to ray setup in each cycle, so a
+// result moves at most one stage per clock (registers between the stages).
+#pragma once
+
+#include <array>
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hls/vizard2_top.hpp"
+#include "refmodel/bittrue/frame_setup.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/render/quant_image.hpp"
+#include "rtl_model/layout/address_mapping.hpp"
+#include "rtl_model/layout/vizard2_layout.hpp"
+#include "rtl_model/pipeline/config.hpp"
+#include "rtl_model/pipeline/memory_port.hpp"
+#include "rtl_model/pipeline/stats.hpp"
+#include "rtl_model/sdram/controller.hpp"
+#include "rtl_model/sim/fifo.hpp"
+
+namespace voxcast::rtl::pipeline {
+
+template <PrecisionProfile P>
+class RayPipeline {
+ public:
+  using G = hls::GeometryParams<P>;
+  using C = hls::CompositorParams<P>;
+
+  // `frame`, `memory` and `mapping` must outlive the pipeline. Throws
+  // voxcast::Error for an invalid configuration or an unknown policy name.
+  RayPipeline(const hls::FrameState<P>& frame, const bittrue::VoxelMemory& memory,
+              const layout::AddressMapping& mapping, const PipelineConfig& config,
+              const std::string& scheduler, const std::string& refresh)
+      : f_(frame),
+        config_(config),
+        layout_(memory.dims),
+        memory_(memory),
+        mapping_(mapping),
+        mip_(frame.mode == hls::FrameMode::Mip),
+        shaded_(frame.mode == hls::FrameMode::Shaded),
+        free_("ray.free", checked(config.ray_slots, "ray_slots")),
+        issue_q_("ray.issue", static_cast<std::size_t>(config.ray_slots)),
+        miss_("setup.miss", depth(config.latency.ray_setup)),
+        interp_("interpolation.out", depth(config.latency.interpolation)),
+        class_("classification.out", depth(config.latency.classification)),
+        shade_("shading.out", depth(config.latency.shading)),
+        out_("output", checked(config.output_depth, "output_depth")) {
+    checked(config.sample_buffer, "sample_buffer");
+    checked(config.latency.ray_setup_interval, "latency.ray_setup_interval");
+    slots_.resize(static_cast<std::size_t>(config.ray_slots));
+    buf_.resize(static_cast<std::size_t>(config.sample_buffer));
+    for (int i = 0; i < config.ray_slots; ++i) free_.push(i);
+    for (int d = 0; d < layout::kDimms; ++d) {
+      req_.emplace_back("dimm" + std::to_string(d) + ".request", depth(config.latency.address));
+      ports_.push_back(make_memory_port(config.memory_model, scheduler, refresh, config.dimm,
+                                        config.controller, config.fast_forward));
+    }
+  }
+
+  // Runs one frame of width x height pixels. Throws voxcast::Error on a
+  // deadlock or undrained state. Call once per pipeline.
+  ref::QuantImage run(int width, int height, RtlStats& stats) {
+    order_ = pixel_order(width, height, config_.traversal, config_.tile);
+    ref::QuantImage image(width, height, P.out_bits);
+    image_ = &image;
+    stats_ = RtlStats{};
+    stats_.clock_mhz = config_.dimm.clock.frequency_mhz();
+    stats_.rays = order_.size();
+    Cycle now = 0;
+    Cycle last_progress = 0;
+    std::uint64_t last_events = 0;
+    // The frame ends when the last pixel is written and the samples still in
+    // flight behind an early-terminated ray have drained.
+    while (written_ < order_.size() || !quiet()) {
+      const std::uint64_t events_before = events_;
+      const StallStats stalls_before = stats_.stalls;
+      cycle(now);
+      ++stats_.evaluated_cycles;
+      // Progress: a FIFO moved or a controller issued or retired (checked
+      // every 256 evaluated cycles).
+      if ((stats_.evaluated_cycles & 255) == 0 || events_ == events_before) {
+        const std::uint64_t e = events_ + commands();
+        if (e != last_events) {
+          last_events = e;
+          last_progress = now;
+        } else if (now - last_progress >= config_.deadlock_cycles) {
+          deadlock(now);
+        }
+      }
+      // Fast-forward: a cycle in which nothing moved repeats until the first
+      // cycle at which a timed condition can change (a unit's result becomes
+      // ready, a ray's set-up ends, a controller can act); its stalls and
+      // FIFO samples repeat with it.
+      Cycle next = now + 1;
+      if (config_.fast_forward && events_ == events_before) {
+        next = std::max(next, next_event(now));
+        if (next - last_progress > config_.deadlock_cycles) deadlock(now);
+        const Cycle skipped = next - now - 1;
+        if (skipped > 0) {
+          repeat_stalls(stalls_before, skipped);
+          for (Cycle k = 0; k < skipped; ++k) sample_fifos();
+        }
+      }
+      now = next;
+    }
+    stats_.cycles = now;
+    expect_drained();
+    collect();
+    stats = stats_;
+    image_ = nullptr;
+    return image;
+  }
+
+ private:
+  // ---- State --------------------------------------------------------------------------------
+  struct Slot {
+    int x = 0, y = 0;
+    Cycle ready_at = 0;
+    std::uint64_t n = 0, issued = 0, composited = 0;
+    int outstanding = 0;     // samples issued and not yet composited or dropped
+    bool finished = false;   // last sample composited, or early ray termination
+    bool in_issue = false;   // in the address generator's queue
+    bool free = true;
+    typename G::pos_t p[3];
+    typename G::step_t s[3];
+    hls::Accumulator<P> acc;
+    typename C::value_t peak = 0;
+  };
+  struct Buffered {  // one sample between address generator and interpolation
+    int slot = 0;
+    std::uint64_t k = 0;
+    unsigned arrived = 0;  // bit d: DIMM d's word is in
+    hls::BankAccess<P> access;
+    std::array<layout::WordCoord, layout::kDimms> coord{};
+    std::array<layout::DimmWord<P>, layout::kDimms> word{};
+  };
+  struct TimedRequest {
+    Cycle ready = 0;
+    sdram::Request request;
+  };
+  struct MissPixel {
+    Cycle ready = 0;
+    int x = 0, y = 0;
+  };
+  struct Interpolated {
+    Cycle ready = 0;
+    int slot = 0;
+    std::uint64_t k = 0;
+    hls::Sample<P> s;
+  };
+  struct Classified {
+    Cycle ready = 0;
+    int slot = 0;
+    std::uint64_t k = 0;
+    hls::Sample<P> s;
+    hls::ClassEntry<P> e;
+  };
+  struct Shaded {
+    Cycle ready = 0;
+    int slot = 0;
+    std::uint64_t k = 0;
+    typename C::value_t value = 0;  // MIP
+    typename C::alpha_t alpha = 0;
+    hls::ShadedColor<P> c;
+  };
+  struct Pixel {
+    int x = 0, y = 0;
+    hls::OutputPixel<P> px;
+  };
+
+  static std::size_t checked(int v, const char* what) {
+    if (v < 1) throw Error(std::string("rtl pipeline: ") + what + " must be at least 1");
+    return static_cast<std::size_t>(v);
+  }
+  std::size_t depth(int latency) const {
+    if (latency < 0 || config_.fifo_depth < 1)
+      throw Error("rtl pipeline: latencies must be >= 0 and fifo_depth >= 1");
+    return static_cast<std::size_t>(latency + config_.fifo_depth);
+  }
+
+  std::uint64_t commands() const {
+    std::uint64_t n = 0;
+    for (const auto& p : ports_)
+      n += static_cast<std::uint64_t>(p->controller_stats().command_cycles) +
+           p->controller_stats().completed;
+    return n;
+  }
+
+  // The first cycle after `now` at which a unit or controller can act when
+  // nothing moved at `now` (a far-future cycle if nothing is timed: deadlock).
+  Cycle next_event(Cycle now) const {
+    Cycle t = std::numeric_limits<Cycle>::max() / 2;
+    auto at = [&t, now](Cycle c) { t = std::min(t, std::max(c, now + 1)); };
+    for (const auto& p : ports_) at(p->wake());
+    for (const auto& rq : req_)
+      if (rq.valid()) at(rq.front().ready);
+    if (miss_.valid()) at(miss_.front().ready);
+    if (interp_.valid()) at(interp_.front().ready);
+    if (class_.valid()) at(class_.front().ready);
+    if (shade_.valid()) at(shade_.front().ready);
+    if (issue_q_.valid()) at(slots_[static_cast<std::size_t>(issue_q_.front())].ready_at);
+    if (next_pixel_ < order_.size()) at(setup_next_);
+    return t;
+  }
+
+  void repeat_stalls(const StallStats& before, Cycle times) {
+    StallStats& s = stats_.stalls;
+    auto rep = [times](Cycle& now_value, Cycle prev) { now_value += (now_value - prev) * times; };
+    rep(s.issue_no_ray, before.issue_no_ray);
+    rep(s.issue_buffer_full, before.issue_buffer_full);
+    rep(s.issue_memory_full, before.issue_memory_full);
+    rep(s.issue_idle, before.issue_idle);
+    rep(s.interp_wait_memory, before.interp_wait_memory);
+    rep(s.interp_blocked, before.interp_blocked);
+    rep(s.setup_no_slot, before.setup_no_slot);
+    rep(s.composite_blocked, before.composite_blocked);
+  }
+
+  // ---- One clock ------------------------------------------------------------------------------
+  void cycle(Cycle now) {
+    write_output();
+    composite(now);
+    shade(now);
+    classify(now);
+    interpolate(now);
+    memory(now);
+    issue(now);
+    setup(now);
+    sample_fifos();
+  }
+
+  // Frame buffer: one pixel per clock.
+  void write_output() {
+    if (!out_.valid()) return;
+    const Pixel p = out_.pop();
+    ++events_;
+    auto& dst = image_->at(p.x, p.y);
+    for (std::size_t c = 0; c < 4; ++c) dst[c] = static_cast<std::uint32_t>(p.px.ch[c].to_uint64());
+    ++written_;
+  }
+
+  void composite(Cycle now) {
+    bool pushed = false;
+    if (shade_.valid() && shade_.front().ready <= now) {
+      const Shaded& e = shade_.front();
+      Slot& s = slots_[static_cast<std::size_t>(e.slot)];
+      const int slot = e.slot;
+      if (s.finished) {  // after early ray termination
+        shade_.pop();
+        ++events_;
+        drop(slot);
+      } else if (!out_.ready()) {
+        ++stats_.stalls.composite_blocked;
+      } else {
+        if (e.k != s.composited) order_error("compositor", slot, e.k, s.composited);
+        ++s.composited;
+        ++stats_.samples;
+        bool done = s.composited == s.n;
+        if (mip_) {
+          hls::mip_update<P>(s.peak, e.value);
+        } else if (e.alpha != 0) {
+          hls::composite<P>(s.acc, e.c, e.alpha);
+          if (hls::ert_reached<P>(s.acc, f_.compositor)) {
+            if (!done) ++stats_.rays_ert;
+            done = true;
+          }
+        }
+        shade_.pop();
+        ++events_;
+        --s.outstanding;
+        if (done) {
+          const hls::Accumulator<P> a = mip_ ? hls::mip_pixel<P>(s.peak, f_.compositor) : s.acc;
+          out_.push(Pixel{s.x, s.y, hls::output<P>(a)});
+          pushed = true;
+          s.finished = true;
+        }
+        try_free(slot);
+      }
+    }
+    // The background pixels of missed rays share the output port.
+    if (!pushed && miss_.valid() && miss_.front().ready <= now && out_.ready()) {
+      const MissPixel m = miss_.pop();
+      out_.push(Pixel{m.x, m.y, hls::output<P>(hls::Accumulator<P>{})});
+      ++events_;
+    }
+  }
+
+  void shade(Cycle now) {
+    if (!class_.valid() || class_.front().ready > now || !shade_.ready()) return;
+    const Classified in = class_.pop();
+    Shaded out;
+    out.ready = now + config_.latency.shading;
+    out.slot = in.slot;
+    out.k = in.k;
+    out.value = in.s.value;
+    out.alpha = 0;
+    if (!mip_) {
+      out.alpha = in.e.alpha;
+      if (in.e.alpha != 0) {
+        hls::Reflect<P> r{0, 0};
+        if (shaded_) r = hls::reflect<P>(f_.reflectance, f_.reflectance_regs, in.s.g);
+        out.c = hls::shade<P>(in.e, r, shaded_);
+      }
+    }
+    shade_.push(out);
+    ++events_;
+  }
+
+  void classify(Cycle now) {
+    if (!interp_.valid() || interp_.front().ready > now || !class_.ready()) return;
+    const Interpolated in = interp_.pop();
+    Classified out;
+    out.ready = now + config_.latency.classification;
+    out.slot = in.slot;
+    out.k = in.k;
+    out.s = in.s;
+    if (!mip_) out.e = hls::classify<P>(f_.class_table, in.s.value);
+    class_.push(out);
+    ++events_;
+  }
+
+  void interpolate(Cycle now) {
+    if (buf_count_ == 0) return;
+    Buffered& b = buf_[buf_head_];
+    if (b.arrived != (1u << layout::kDimms) - 1u) {
+      ++stats_.stalls.interp_wait_memory;
+      return;
+    }
+    if (slots_[static_cast<std::size_t>(b.slot)].finished) {  // after early ray termination
+      const int slot = b.slot;
+      advance_buffer();
+      drop(slot);
+      return;
+    }
+    if (!interp_.ready()) {
+      ++stats_.stalls.interp_blocked;
+      return;
+    }
+    const layout::Dimm4Banks<P> view{b.word.data(), b.access.parity};
+    hls::VoxelWordFx<P> corner[8];
+    hls::gather<P>(view, b.access, corner);
+    Interpolated out;
+    out.ready = now + config_.latency.interpolation;
+    out.slot = b.slot;
+    out.k = b.k;
+    out.s = hls::interpolation_processor<P>(corner, b.access.fq);
+    interp_.push(out);
+    advance_buffer();
+  }
+
+  void advance_buffer() {
+    buf_[buf_head_].arrived = 0;
+    buf_head_ = buf_head_ + 1 == buf_.size() ? 0 : buf_head_ + 1;
+    --buf_count_;
+    ++events_;
+  }
+
+  void memory(Cycle now) {
+    for (std::size_t d = 0; d < layout::kDimms; ++d) {
+      auto& rq = req_[d];
+      MemoryPort& port = *ports_[d];
+      if (rq.valid() && rq.front().ready <= now && port.ready()) {
+        sdram::Request r = rq.pop().request;
+        r.arrival = now;
+        port.push(r);
+        ++events_;
+      }
+      port.tick(now);
+      auto& completions = port.completions();
+      if (completions.valid()) {
+        const std::uint64_t id = completions.pop().request.id;
+        port.popped(now);
+        Buffered& b = buf_[id];
+        b.word[d] = memory_.word(static_cast<int>(d), b.coord[d]);
+        b.arrived |= 1u << d;
+        ++events_;
+      }
+    }
+  }
+
+  void issue(Cycle now) {
+    while (issue_q_.valid() && slots_[static_cast<std::size_t>(issue_q_.front())].finished) {
+      const int i = issue_q_.pop();
+      slots_[static_cast<std::size_t>(i)].in_issue = false;
+      burst_count_ = 0;
+      try_free(i);
+    }
+    if (!issue_q_.valid()) {
+      ++(next_pixel_ == order_.size() ? stats_.stalls.issue_idle : stats_.stalls.issue_no_ray);
+      return;
+    }
+    const int i = issue_q_.front();
+    Slot& s = slots_[static_cast<std::size_t>(i)];
+    if (s.ready_at > now) {
+      ++stats_.stalls.issue_no_ray;
+      return;
+    }
+    if (buf_count_ == buf_.size()) {
+      ++stats_.stalls.issue_buffer_full;
+      return;
+    }
+    for (const auto& rq : req_)
+      if (!rq.ready()) {
+        ++stats_.stalls.issue_memory_full;
+        return;
+      }
+    // The sample's bank access (hls address generator), its neighbourhood's
+    // four DIMM words, one request to each DIMM.
+    std::size_t tail = buf_head_ + buf_count_;
+    if (tail >= buf_.size()) tail -= buf_.size();
+    Buffered& b = buf_[tail];
+    b.slot = i;
+    b.k = s.issued;
+    b.arrived = 0;
+    b.access = hls::address_generator<P>(f_.geometry, s.p);
+    b.coord = layout::Vizard2Layout::neighbourhood(layout_.corner<P>(b.access));
+    for (std::size_t d = 0; d < layout::kDimms; ++d)
+      memory_.prefetch(static_cast<int>(d), b.coord[d]);  // host cache only: no model effect
+    ++buf_count_;
+    for (std::size_t d = 0; d < layout::kDimms; ++d) {
+      TimedRequest t;
+      t.ready = now + config_.latency.address;
+      t.request.id = tail;
+      t.request.kind = sdram::RequestKind::kRead;
+      t.request.address = mapping_.map(b.coord[d]);
+      req_[d].push(t);
+    }
+    ++events_;
+    ++s.outstanding;
+    ++s.issued;
+    ++stats_.samples_issued;
+    hls::step_position<P>(s.p, s.s);
+    if (s.issued == s.n) {
+      issue_q_.pop();
+      s.in_issue = false;
+      burst_count_ = 0;
+    } else if (config_.issue_burst > 0 && ++burst_count_ >= config_.issue_burst) {
+      burst_count_ = 0;
+      issue_q_.push(issue_q_.pop());
+    }
+  }
+
+  void setup(Cycle now) {
+    if (next_pixel_ == order_.size() || now < setup_next_) return;
+    const auto [x, y] = order_[next_pixel_];
+    // The set-up of the next pixel is computed once and held until it can
+    // leave: a hit needs a free ray slot, a miss room for its pixel.
+    if (setup_for_ != next_pixel_) {
+      setup_ray_ = hls::ray_setup<P>(f_.geometry, f_.rsqrt.seed, x, y);
+      setup_for_ = next_pixel_;
+    }
+    const hls::RaySetup<P>& ray = setup_ray_;
+    if (ray.hit && !free_.valid()) {
+      ++stats_.stalls.setup_no_slot;
+      return;
+    }
+    if (!ray.hit && !miss_.ready()) return;
+    const Cycle ready = now + config_.latency.ray_setup;
+    if (ray.hit) {
+      const int i = free_.pop();
+      Slot& s = slots_[static_cast<std::size_t>(i)];
+      s = Slot{};
+      s.x = x;
+      s.y = y;
+      s.ready_at = ready;
+      s.n = ray.n.to_uint64();
+      s.free = false;
+      s.in_issue = true;
+      for (int k = 0; k < 3; ++k) {
+        s.p[k] = ray.p0[k];
+        s.s[k] = ray.s[k];
+      }
+      issue_q_.push(i);
+      ++stats_.rays_hit;
+    } else {
+      miss_.push(MissPixel{ready, x, y});
+    }
+    ++events_;
+    ++next_pixel_;
+    setup_next_ = now + config_.latency.ray_setup_interval;
+  }
+
+  void sample_fifos() {
+    free_.sample();
+    issue_q_.sample();
+    miss_.sample();
+    for (auto& rq : req_) rq.sample();
+    interp_.sample();
+    class_.sample();
+    shade_.sample();
+    out_.sample();
+  }
+
+  // ---- Ray slots ------------------------------------------------------------------------------
+  void drop(int slot) {
+    Slot& s = slots_[static_cast<std::size_t>(slot)];
+    --s.outstanding;
+    ++stats_.samples_discarded;
+    try_free(slot);
+  }
+
+  void try_free(int slot) {
+    Slot& s = slots_[static_cast<std::size_t>(slot)];
+    if (s.free || !s.finished || s.outstanding != 0 || s.in_issue) return;
+    s.free = true;
+    free_.push(slot);
+  }
+
+  // ---- Errors and the end of the frame --------------------------------------------------------
+  bool quiet() const {
+    if (buf_count_ != 0 || free_.size() != slots_.size() || !miss_.empty() || !interp_.empty() ||
+        !class_.empty() || !shade_.empty() || !out_.empty())
+      return false;
+    for (const auto& rq : req_)
+      if (!rq.empty()) return false;
+    for (const auto& p : ports_)
+      if (!p->idle()) return false;
+    return true;
+  }
+
+  [[noreturn]] void order_error(const char* unit, int slot, std::uint64_t got,
+                                std::uint64_t expected) const {
+    std::ostringstream os;
+    os << "rtl pipeline: " << unit << " got sample " << got << " of ray slot " << slot
+       << ", expected sample " << expected;
+    throw Error(os.str());
+  }
+
+  std::string state() const {
+    std::ostringstream os;
+    os << "pixels set up " << next_pixel_ << "/" << order_.size() << ", written " << written_
+       << ", sample buffer " << buf_count_ << "/" << buf_.size();
+    if (buf_count_ > 0) {
+      const Buffered& b = buf_[buf_head_];
+      os << " (head: ray slot " << b.slot << " sample " << b.k << ", DIMM words in 0x" << std::hex
+         << b.arrived << std::dec << ")";
+    }
+    os << "; " << free_ << "; " << issue_q_ << "; " << miss_;
+    for (const auto& rq : req_) os << "; " << rq;
+    os << "; " << interp_ << "; " << class_ << "; " << shade_ << "; " << out_;
+    for (std::size_t d = 0; d < ports_.size(); ++d)
+      os << "; DIMM " << d << " controller: " << ports_[d]->pending() << " pending, "
+         << ports_[d]->in_flight() << " in flight";
+    for (std::size_t i = 0; i < slots_.size(); ++i) {
+      const Slot& s = slots_[i];
+      if (s.free) continue;
+      os << "; slot " << i << " pixel (" << s.x << ", " << s.y << ") issued " << s.issued << "/"
+         << s.n << ", composited " << s.composited << ", outstanding " << s.outstanding
+         << (s.finished ? ", finished" : "") << (s.in_issue ? ", in issue queue" : "");
+    }
+    return os.str();
+  }
+
+  [[noreturn]] void deadlock(Cycle now) const {
+    std::ostringstream os;
+    os << "rtl pipeline: deadlock, no progress for " << config_.deadlock_cycles
+       << " cycles at cycle " << now << ": " << state();
+    throw Error(os.str());
+  }
+
+  void expect_drained() const {
+    try {
+      if (buf_count_ != 0) throw Error("the sample buffer is not empty");
+      miss_.expect_drained();
+      for (const auto& rq : req_) rq.expect_drained();
+      interp_.expect_drained();
+      class_.expect_drained();
+      shade_.expect_drained();
+      out_.expect_drained();
+      issue_q_.expect_drained();
+      for (const auto& p : ports_) p->expect_drained();
+      if (free_.size() != slots_.size()) throw Error("a ray slot is still busy");
+    } catch (const Error& e) {
+      throw Error(std::string("rtl pipeline: undrained at the end of the frame: ") + e.what() +
+                  "; " + state());
+    }
+  }
+
+  void collect() {
+    for (std::size_t d = 0; d < ports_.size(); ++d) {
+      stats_.dimms[d].controller = ports_[d]->controller_stats();
+      stats_.dimms[d].dimm = ports_[d]->dimm_stats();
+    }
+    auto add = [this](const auto& fifo) {
+      stats_.fifos.push_back(NamedFifoStats{fifo.name(), fifo.depth(), fifo.stats()});
+    };
+    add(issue_q_);
+    add(miss_);
+    for (const auto& rq : req_) add(rq);
+    for (const auto& p : ports_) add(p->completions());
+    add(interp_);
+    add(class_);
+    add(shade_);
+    add(out_);
+  }
+
+  // ---- Members --------------------------------------------------------------------------------
+  const hls::FrameState<P>& f_;
+  PipelineConfig config_;
+  layout::Vizard2Layout layout_;
+  layout::Vizard2Memory<P> memory_;
+  const layout::AddressMapping& mapping_;
+  bool mip_, shaded_;
+
+  std::vector<std::pair<int, int>> order_;
+  std::size_t next_pixel_ = 0;
+  std::size_t setup_for_ = static_cast<std::size_t>(-1);  // the pixel setup_ray_ belongs to
+  hls::RaySetup<P> setup_ray_;
+  std::size_t written_ = 0;
+  Cycle setup_next_ = 0;
+  int burst_count_ = 0;
+  std::uint64_t events_ = 0;
+  ref::QuantImage* image_ = nullptr;
+
+  std::vector<Slot> slots_;
+  sim::Fifo<int> free_;     // free ray slots
+  sim::Fifo<int> issue_q_;  // rays with samples to issue, oldest first
+  sim::Fifo<MissPixel> miss_;
+  std::vector<sim::Fifo<TimedRequest>> req_;
+  std::vector<std::unique_ptr<MemoryPort>> ports_;
+  std::vector<Buffered> buf_;
+  std::size_t buf_head_ = 0, buf_count_ = 0;
+  sim::Fifo<Interpolated> interp_;
+  sim::Fifo<Classified> class_;
+  sim::Fifo<Shaded> shade_;
+  sim::Fifo<Pixel> out_;
+  RtlStats stats_;
+};
+
+}  // namespace voxcast::rtl::pipeline

@@ -1,0 +1,98 @@
+#include "rtl_model/pipeline/stats.hpp"
+
+#include <iomanip>
+#include <ostream>
+
+namespace voxcast::rtl::pipeline {
+
+namespace {
+double ratio(double a, double b) { return b == 0.0 ? 0.0 : a / b; }
+}  // namespace
+
+std::ostream& operator<<(std::ostream& os, const StallStats& s) {
+  return os << "address generator: no ray " << s.issue_no_ray << ", sample buffer full "
+            << s.issue_buffer_full << ", memory queue full " << s.issue_memory_full
+            << ", done " << s.issue_idle << "; interpolation: waiting for memory "
+            << s.interp_wait_memory << ", blocked " << s.interp_blocked
+            << "; setup: no slot " << s.setup_no_slot << "; compositor: blocked "
+            << s.composite_blocked;
+}
+
+double RtlStats::ns_per_sample() const {
+  return ratio(static_cast<double>(cycles) * period_ns(), static_cast<double>(samples));
+}
+double RtlStats::ns_per_issued_sample() const {
+  return ratio(static_cast<double>(cycles) * period_ns(), static_cast<double>(samples_issued));
+}
+double RtlStats::samples_per_cycle() const {
+  return ratio(static_cast<double>(samples), static_cast<double>(cycles));
+}
+
+std::uint64_t RtlStats::row_hits() const {
+  std::uint64_t n = 0;
+  for (const auto& d : dimms) n += d.controller.row_hits;
+  return n;
+}
+std::uint64_t RtlStats::row_misses() const {
+  std::uint64_t n = 0;
+  for (const auto& d : dimms) n += d.controller.row_misses;
+  return n;
+}
+std::uint64_t RtlStats::row_conflicts() const {
+  std::uint64_t n = 0;
+  for (const auto& d : dimms) n += d.controller.row_conflicts;
+  return n;
+}
+double RtlStats::row_hit_rate() const {
+  const auto all = row_hits() + row_misses() + row_conflicts();
+  return ratio(static_cast<double>(row_hits()), static_cast<double>(all));
+}
+std::uint64_t RtlStats::activates() const {
+  std::uint64_t n = 0;
+  for (const auto& d : dimms)
+    for (const auto& b : d.dimm.banks) n += b.activates;
+  return n;
+}
+std::uint64_t RtlStats::refreshes() const {
+  std::uint64_t n = 0;
+  for (const auto& d : dimms) n += d.dimm.refreshes;
+  return n;
+}
+std::uint64_t RtlStats::bytes_read() const {
+  std::uint64_t n = 0;
+  for (const auto& d : dimms) n += d.controller.bytes;
+  return n;
+}
+double RtlStats::peak_bytes() const { return 4.0 * 8.0 * static_cast<double>(cycles); }
+double RtlStats::bandwidth_utilisation() const {
+  return ratio(static_cast<double>(bytes_read()), peak_bytes());
+}
+double RtlStats::bandwidth_mb_s() const {
+  return ratio(static_cast<double>(bytes_read()) * 1e-6, seconds());
+}
+
+std::ostream& operator<<(std::ostream& os, const RtlStats& s) {
+  os << std::fixed << std::setprecision(3);
+  os << "frame: " << s.cycles << " cycles at " << s.clock_mhz << " MHz = " << s.seconds() * 1e3
+     << " ms (" << s.fps() << " fps)\n";
+  os << "rays " << s.rays << " (" << s.rays_hit << " hit, " << s.rays_ert << " ended by ERT)\n";
+  os << "samples: " << s.samples << " composited, " << s.samples_issued << " issued, "
+     << s.samples_discarded << " discarded after ERT; " << s.ns_per_sample()
+     << " ns/sample (" << s.ns_per_issued_sample() << " per issued), " << s.samples_per_cycle()
+     << " samples/cycle\n";
+  os << "memory: row hits " << s.row_hits() << ", misses " << s.row_misses() << ", conflicts "
+     << s.row_conflicts() << " (hit rate " << s.row_hit_rate() << "); activates "
+     << s.activates() << ", refreshes " << s.refreshes() << "; " << s.bandwidth_mb_s()
+     << " MB/s = " << s.bandwidth_utilisation() * 100.0 << "% of peak\n";
+  for (std::size_t d = 0; d < s.dimms.size(); ++d) {
+    os << "  DIMM " << d << ": " << s.dimms[d].controller << "\n    activates per bank:";
+    for (const auto& b : s.dimms[d].dimm.banks) os << " " << b.activates;
+    os << ", refreshes " << s.dimms[d].dimm.refreshes << "\n";
+  }
+  os << "stalls: " << s.stalls << "\n";
+  for (const auto& f : s.fifos) os << "  FIFO '" << f.name << "' depth " << f.depth << ": " << f.stats << "\n";
+  os << "simulation: " << s.evaluated_cycles << " of " << s.cycles << " cycles evaluated\n";
+  return os;
+}
+
+}  // namespace voxcast::rtl::pipeline

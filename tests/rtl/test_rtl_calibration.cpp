@@ -1,0 +1,55 @@
+// The calibration frames of docs/performance.md (rtl_model/bench/calibration.hpp).
+// A 256^3 frame simulates in tens of seconds, so these run only on request:
+//   VOXCAST_CALIBRATION=1 ./build/release/tests/voxcast_tests_rtl --gtest_filter='RtlCalibration*'
+// (VOXCAST_CALIBRATION=name runs one point; VOXCAST_CALIBRATION_LAYOUT=
+// bricked|morton and VOXCAST_CALIBRATION_TRAVERSAL=tiles change the baseline).
+// The figures are printed and written as test properties
+// (--gtest_output=xml:calibration.xml).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+#include "rtl_model/bench/calibration.hpp"
+#include "rtl_model/pci/pci_bus.hpp"
+
+namespace voxcast::test {
+namespace {
+
+TEST(RtlCalibration, Vizard2Frames) {
+  const char* env = std::getenv("VOXCAST_CALIBRATION");
+  if (env == nullptr || std::string(env).empty())
+    GTEST_SKIP() << "set VOXCAST_CALIBRATION=1 (or a point's name) to run the 256^3 calibration";
+  const std::string only = env;
+  rtl::RtlConfig config = rtl::vizard2_baseline();
+  if (const char* layout = std::getenv("VOXCAST_CALIBRATION_LAYOUT")) config.mapping.name = layout;
+  if (const char* t = std::getenv("VOXCAST_CALIBRATION_TRAVERSAL"))
+    config.pipeline.traversal = rtl::pipeline::parse_traversal(t);
+  for (const auto& point : rtl::bench::calibration_points()) {
+    if (only != "1" && only != point.name) continue;
+    const rtl::bench::CalibrationResult r = rtl::bench::run_calibration(point, config);
+    std::cout << "== " << r.name << " (" << point.description << "), " << config << "\n"
+              << r.stats << "host: set-up " << r.setup_seconds << " s, simulation "
+              << r.simulate_seconds << " s, " << r.samples_per_host_second() * 1e-6
+              << " M simulated samples per second\n";
+    RecordProperty(r.name + ".ns_per_sample", std::to_string(r.stats.ns_per_sample()));
+    RecordProperty(r.name + ".fps", std::to_string(r.stats.fps()));
+    RecordProperty(r.name + ".cycles", std::to_string(r.stats.cycles));
+    RecordProperty(r.name + ".samples", std::to_string(r.stats.samples));
+    RecordProperty(r.name + ".row_hit_rate", std::to_string(r.stats.row_hit_rate()));
+    EXPECT_GT(r.stats.samples, 0u);
+  }
+}
+
+TEST(RtlCalibration, PciUpload256) {
+  const rtl::pci::PciBus bus;
+  const auto t = rtl::pci::vizard2_host_transfers(bus, std::uint64_t{256} * 256 * 256,
+                                                  rtl::pci::UploadFormat::kRawVoxels, 256, 256, 4);
+  std::cout << bus.config() << "\nvolume: " << t.volume << "\ntables: " << t.tables
+            << "\nimage: " << t.image << "\n";
+  EXPECT_NEAR(t.volume.seconds, 0.15, 0.005);
+}
+
+}  // namespace
+}  // namespace voxcast::test

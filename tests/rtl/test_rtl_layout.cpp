@@ -1,0 +1,262 @@
+// The VIZARD II volume memory (rtl_model/layout): every 2x2x2 neighbourhood
+// is one word from each of the four DIMMs and holds the volume's voxels; the
+// 64-bit bus word is [v(x+1) : v(x)]; the hls datapath reads the same corners
+// through the four-DIMM bank view; every address mapping is injective and
+// inside the DIMM.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+#include <set>
+#include <tuple>
+
+#include "hls/interpolation_processor.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/precision/preset_profiles.hpp"
+#include "rtl_model/layout/address_mapping.hpp"
+#include "rtl_model/layout/vizard2_layout.hpp"
+
+namespace voxcast::test {
+namespace {
+
+using rtl::layout::DimmWord;
+using rtl::layout::Vizard2Layout;
+using rtl::layout::Vizard2Memory;
+using rtl::layout::WordCoord;
+using rtl::layout::WordGrid;
+
+// A volume whose voxel words are distinct: value and gradients from (x, y, z).
+bittrue::VoxelMemory numbered_memory(std::array<int, 3> dims) {
+  bittrue::VoxelMemory m;
+  m.dims = dims;
+  const int hx = (dims[0] + 1) / 2, hy = (dims[1] + 1) / 2, hz = (dims[2] + 1) / 2;
+  for (auto& b : m.banks) b.assign(static_cast<std::size_t>(hx * hy * hz), bittrue::VoxelWord{});
+  for (int z = 0; z < dims[2]; ++z)
+    for (int y = 0; y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x) {
+        const int b = (x & 1) | (y & 1) << 1 | (z & 1) << 2;
+        auto& w = m.banks[static_cast<std::size_t>(b)]
+                         [static_cast<std::size_t>((x >> 1) + (y >> 1) * hx + (z >> 1) * hx * hy)];
+        w.value = static_cast<std::uint32_t>(1 + x + 7 * y + 13 * z) & 0xffu;
+        w.gradient = {x - 60, y - 3, 100 - z};
+      }
+  return m;
+}
+
+template <PrecisionProfile P>
+std::tuple<unsigned, std::int64_t, std::int64_t, std::int64_t> fields(const hls::VoxelWordFx<P>& v) {
+  return {v.value.to_uint(), v.g[0].range().to_uint64(), v.g[1].range().to_uint64(),
+          v.g[2].range().to_uint64()};
+}
+
+template <PrecisionProfile P>
+void check_neighbourhoods(std::array<int, 3> dims) {
+  SCOPED_TRACE(::testing::Message() << "dims " << dims[0] << "x" << dims[1] << "x" << dims[2]);
+  const bittrue::VoxelMemory mem = numbered_memory(dims);
+  const Vizard2Memory<P> dimms(mem);
+  const hls::host::BitTrueBanks<P> banks(mem);
+  auto voxel = [&](int x, int y, int z) {  // the hls design's view of the volume
+    const int hx = (dims[0] + 1) / 2, hy = (dims[1] + 1) / 2;
+    const int b = (x & 1) | (y & 1) << 1 | (z & 1) << 2;
+    return banks.read(b, typename hls::InterpolationParams<P>::word_addr_t(
+                             (x >> 1) + (y >> 1) * hx + (z >> 1) * hx * hy));
+  };
+  const int last[3] = {std::max(dims[0] - 2, 0), std::max(dims[1] - 2, 0), std::max(dims[2] - 2, 0)};
+  for (int z = 0; z <= last[2]; ++z)
+    for (int y = 0; y <= last[1]; ++y)
+      for (int x = 0; x <= last[0]; ++x) {
+        const auto words = Vizard2Layout::neighbourhood({x, y, z});
+        for (int j = 0; j < 8; ++j) {
+          const int cx = x + (j & 1), cy = y + ((j >> 1) & 1), cz = z + ((j >> 2) & 1);
+          // The corner is in DIMM (cy&1)|(cz&1)<<1, half cx - x of its word.
+          const int d = Vizard2Layout::dimm_of(cy, cz);
+          const WordCoord& c = words[static_cast<std::size_t>(d)];
+          ASSERT_EQ(c, Vizard2Layout::word_of(x, cy, cz)) << "corner " << j;
+          const auto v = Vizard2Layout::voxel_of(d, c, j & 1);
+          ASSERT_EQ(v, (std::array<int, 3>{cx, cy, cz}));
+          const DimmWord<P> w = dimms.word(d, c);
+          const auto& half = (j & 1) ? w.hi : w.lo;
+          if (cx < dims[0] && cy < dims[1] && cz < dims[2]) {
+            ASSERT_EQ(fields<P>(half), fields<P>(voxel(cx, cy, cz)))
+                << "corner " << j << " at (" << x << ", " << y << ", " << z << ")";
+          } else {  // beyond a 1-voxel axis: the zero padding the hls banks hold
+            ASSERT_EQ(fields<P>(half), fields<P>(hls::VoxelWordFx<P>{})) << "corner " << j;
+          }
+        }
+        // Four distinct DIMMs, one word each: the whole neighbourhood in one access.
+        std::set<int> used;
+        for (int j = 0; j < 8; ++j)
+          used.insert(Vizard2Layout::dimm_of(y + ((j >> 1) & 1), z + ((j >> 2) & 1)));
+        ASSERT_EQ(used.size(), std::size_t{4});
+      }
+  // Every word of every DIMM lies in the grid.
+  const Vizard2Layout layout(dims);
+  EXPECT_EQ(layout.grid().nx, static_cast<std::uint32_t>(dims[0]));
+  EXPECT_EQ(layout.grid().ny2, static_cast<std::uint32_t>((dims[1] + 1) / 2));
+  EXPECT_EQ(layout.grid().nz2, static_cast<std::uint32_t>((dims[2] + 1) / 2));
+}
+
+TEST(Vizard2Layout, EveryNeighbourhoodIsOneWordPerDimm) {
+  for (const auto& dims : std::vector<std::array<int, 3>>{
+           {5, 4, 3}, {6, 7, 5}, {2, 2, 2}, {1, 3, 2}, {4, 1, 1}, {9, 6, 8}}) {
+    check_neighbourhoods<kVizard2>(dims);
+    check_neighbourhoods<kPrecise>(dims);
+  }
+}
+
+// The 64-bit bus word of the vizard2 profile: two 32-bit packed voxel words.
+TEST(Vizard2Layout, BusWordIsTwoPackedVoxels) {
+  static_assert(hls::InterpolationParams<kVizard2>::word_bits == 32);
+  const std::array<int, 3> dims{7, 6, 5};
+  const bittrue::VoxelMemory mem = numbered_memory(dims);
+  const Vizard2Memory<kVizard2> dimms(mem);
+  const Vizard2Layout layout(dims);
+  const WordGrid& g = layout.grid();
+  for (int d = 0; d < 4; ++d)
+    for (std::uint32_t z2 = 0; z2 < g.nz2; ++z2)
+      for (std::uint32_t y2 = 0; y2 < g.ny2; ++y2)
+        for (std::uint32_t x = 0; x < g.nx; ++x) {
+          const WordCoord c{x, y2, z2};
+          const std::uint64_t bus = dimms.bus_word(d, c);
+          const auto v = Vizard2Layout::voxel_of(d, c, 0);
+          const auto lo = hls::pack_voxel_word<kVizard2>(dimms.voxel(v[0], v[1], v[2])).to_uint64();
+          const auto hi =
+              hls::pack_voxel_word<kVizard2>(dimms.voxel(v[0] + 1, v[1], v[2])).to_uint64();
+          ASSERT_EQ(bus & 0xffffffffu, lo);
+          ASSERT_EQ(bus >> 32, hi);
+          if (v[0] + 1 == dims[0]) {
+            ASSERT_EQ(hi, 0u) << "x + 1 beyond the volume reads zero";
+          }
+          if (v[1] < dims[1] && v[2] < dims[2]) {
+            ASSERT_EQ(lo & 0xffu, (1u + static_cast<unsigned>(v[0] + 7 * v[1] + 13 * v[2])) & 0xffu);
+          }
+        }
+}
+
+// The hls address generator's access, translated to the four DIMM words,
+// gathers the same corners as the hls design's own 8-bank view.
+template <PrecisionProfile P>
+void check_gather(std::array<int, 3> dims) {
+  using G = hls::GeometryParams<P>;
+  const bittrue::VoxelMemory mem = numbered_memory(dims);
+  const Vizard2Memory<P> dimms(mem);
+  const Vizard2Layout layout(dims);
+  const hls::host::BitTrueBanks<P> banks(mem);
+  hls::GeometryRegisters<P> r;
+  for (int k = 0; k < 3; ++k) {
+    r.LO[k] = 0;
+    r.HI[k] = dims[static_cast<std::size_t>(k)] - 1;
+    r.LAST[k] = static_cast<unsigned>(dims[static_cast<std::size_t>(k)] - 1);
+    r.dims[k] = static_cast<unsigned>(dims[static_cast<std::size_t>(k)]);
+  }
+  r.HX = static_cast<unsigned>((dims[0] + 1) / 2);
+  r.HXY = static_cast<unsigned>((dims[0] + 1) / 2 * ((dims[1] + 1) / 2));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.7, 1.0);
+  for (int i = 0; i < 3000; ++i) {
+    typename G::pos_t p[3];
+    for (int k = 0; k < 3; ++k) p[k] = u(rng) * dims[static_cast<std::size_t>(k)];
+    const hls::BankAccess<P> acc = hls::address_generator<P>(r, p);
+    const auto words = Vizard2Layout::neighbourhood(layout.corner<P>(acc));
+    std::array<DimmWord<P>, 4> w;
+    for (int d = 0; d < 4; ++d)
+      w[static_cast<std::size_t>(d)] = dimms.word(d, words[static_cast<std::size_t>(d)]);
+    const rtl::layout::Dimm4Banks<P> view{w.data(), acc.parity};
+    hls::VoxelWordFx<P> a[8], b[8];
+    hls::gather<P>(view, acc, a);
+    hls::gather<P>(banks, acc, b);
+    for (int j = 0; j < 8; ++j) ASSERT_EQ(fields<P>(a[j]), fields<P>(b[j])) << "corner " << j;
+  }
+}
+
+TEST(Vizard2Layout, HlsGatherSeesTheSameCorners) {
+  for (const auto& dims : std::vector<std::array<int, 3>>{{9, 6, 8}, {8, 8, 8}, {1, 5, 3}, {5, 1, 2}}) {
+    SCOPED_TRACE(::testing::Message() << dims[0] << "x" << dims[1] << "x" << dims[2]);
+    check_gather<kVizard2>(dims);
+    check_gather<kBalanced>(dims);
+  }
+}
+
+// ---- Address mappings -----------------------------------------------------------------------
+void check_injective(const rtl::layout::AddressMapping& m) {
+  SCOPED_TRACE(std::string(m.name()));
+  const WordGrid& g = m.grid();
+  const auto& geo = m.geometry();
+  std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> seen;
+  for (std::uint32_t z = 0; z < g.nz2; ++z)
+    for (std::uint32_t y = 0; y < g.ny2; ++y)
+      for (std::uint32_t x = 0; x < g.nx; ++x) {
+        const rtl::sdram::Address a = m.map({x, y, z});
+        ASSERT_LT(a.bank, geo.banks);
+        ASSERT_LT(a.row, geo.rows);
+        ASSERT_LT(a.column, geo.columns);
+        ASSERT_TRUE(seen.insert({a.bank, a.row, a.column}).second)
+            << "two words at bank " << a.bank << " row " << a.row << " column " << a.column;
+      }
+}
+
+TEST(AddressMapping, EveryMappingIsInjectiveAndInside) {
+  const auto geo = rtl::sdram::geometries::mt4lsdt864a();
+  for (const WordGrid& g : {WordGrid{10, 5, 3}, WordGrid{16, 8, 8}, WordGrid{33, 7, 9}, WordGrid{1, 1, 1}})
+    for (const std::string& name : rtl::layout::mapping_names()) {
+      rtl::layout::MappingSpec spec;
+      spec.name = name;
+      check_injective(*rtl::layout::make_address_mapping(spec, g, geo));
+      if (name == "bricked") {
+        spec.brick = {4, 2, 1};
+        check_injective(*rtl::layout::make_address_mapping(spec, g, geo));
+      }
+    }
+}
+
+// The 256^3 volume: 256 x 128 x 128 words per DIMM, 32 MB of the 64 MB module.
+TEST(AddressMapping, VizardVolumeOnTheModule) {
+  const auto geo = rtl::sdram::geometries::mt4lsdt864a();
+  const Vizard2Layout layout({256, 256, 256});
+  EXPECT_EQ(layout.grid().words() * geo.bytes_per_beat(), std::uint64_t{32} << 20);
+  rtl::layout::MappingSpec linear;
+  const auto lin = rtl::layout::make_address_mapping(linear, layout.grid(), geo);
+  // Linear: x streams through a row of 512 columns (two lines of x), the
+  // next 512 words open the next bank.
+  EXPECT_EQ(lin->map({0, 0, 0}), (rtl::sdram::Address{0, 0, 0}));
+  EXPECT_EQ(lin->map({255, 1, 0}), (rtl::sdram::Address{0, 0, 511}));
+  EXPECT_EQ(lin->map({0, 2, 0}), (rtl::sdram::Address{1, 0, 0}));
+  EXPECT_EQ(lin->map({0, 8, 0}), (rtl::sdram::Address{0, 1, 0}));
+  // Bricked 8x8x8: one brick is one row.
+  rtl::layout::MappingSpec bricked;
+  bricked.name = "bricked";
+  const auto br = rtl::layout::make_address_mapping(bricked, layout.grid(), geo);
+  const rtl::sdram::Address first = br->map({0, 0, 0});
+  for (std::uint32_t z = 0; z < 8; ++z)
+    for (std::uint32_t y = 0; y < 8; ++y)
+      for (std::uint32_t x = 0; x < 8; ++x) {
+        const rtl::sdram::Address a = br->map({x, y, z});
+        ASSERT_EQ(a.bank, first.bank);
+        ASSERT_EQ(a.row, first.row);
+      }
+  EXPECT_NE(br->map({8, 0, 0}).bank, first.bank);
+  // Morton: an aligned 8x8x8 cube is one row too.
+  rtl::layout::MappingSpec morton;
+  morton.name = "morton";
+  const auto mo = rtl::layout::make_address_mapping(morton, layout.grid(), geo);
+  for (std::uint32_t z = 8; z < 16; ++z)
+    for (std::uint32_t y = 0; y < 8; ++y)
+      for (std::uint32_t x = 8; x < 16; ++x) ASSERT_EQ(mo->map({x, y, z}).row, mo->map({8, 0, 8}).row);
+}
+
+TEST(AddressMapping, RejectsWhatDoesNotFit) {
+  const auto geo = rtl::sdram::geometries::mt4lsdt864a();
+  const Vizard2Layout big({512, 256, 256});  // 512 x 128 x 128 words: exactly 64 MB
+  rtl::layout::MappingSpec spec;
+  EXPECT_NO_THROW(rtl::layout::make_address_mapping(spec, big.grid(), geo));
+  const Vizard2Layout too_big({512, 256, 258});
+  EXPECT_THROW(rtl::layout::make_address_mapping(spec, too_big.grid(), geo), Error);
+  spec.name = "bricked";
+  spec.brick = {8, 6, 8};
+  EXPECT_THROW(rtl::layout::make_address_mapping(spec, Vizard2Layout({16, 16, 16}).grid(), geo), Error);
+  spec.name = "hilbert";
+  EXPECT_THROW(rtl::layout::make_address_mapping(spec, Vizard2Layout({16, 16, 16}).grid(), geo), Error);
+}
+
+}  // namespace
+}  // namespace voxcast::test

@@ -1,0 +1,119 @@
+// The event-driven in-order port (rtl_model/pipeline/fast_in_order_port.hpp)
+// against the reference Controller with the in-order scheduler and eager
+// refresh: random request streams with bank and row locality, pushed at
+// random cycles and with random consumer back-pressure, must give the same
+// completions (request, row outcome, first command, column command, data
+// window) in the same cycles, and the same statistics.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "rtl_model/pipeline/memory_port.hpp"
+#include "rtl_model/sdram/timing.hpp"
+
+namespace voxcast::test {
+namespace {
+
+using rtl::pipeline::MemoryModel;
+using rtl::pipeline::MemoryPort;
+using rtl::sdram::Completion;
+
+struct Run {
+  std::vector<Completion> done;
+  std::vector<rtl::sim::Cycle> at;
+};
+
+Run drive(MemoryPort& port, std::uint32_t seed, rtl::sim::Cycle cycles, double pop_rate) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Run run;
+  std::uint64_t id = 0;
+  std::uint32_t bank = 0, row = 0, column = 0;
+  for (rtl::sim::Cycle now = 0; now < cycles; ++now) {
+    // Requests: mostly the next column, sometimes a new row or bank.
+    if (u(rng) < 0.7 && port.ready()) {
+      const double r = u(rng);
+      if (r < 0.08) row = static_cast<std::uint32_t>(rng() % 4096);
+      if (r < 0.12) bank = static_cast<std::uint32_t>(rng() % 4);
+      column = (column + 1) % 512;
+      port.push(rtl::sdram::Request{id++, rtl::sdram::RequestKind::kRead, {bank, row, column}, now});
+    }
+    port.tick(now);
+    if (port.completions().valid() && u(rng) < pop_rate) {
+      run.done.push_back(port.completions().pop());
+      run.at.push_back(now);
+      port.popped(now);
+    }
+  }
+  return run;
+}
+
+void compare(const rtl::sdram::DimmConfig& dimm, const rtl::sdram::ControllerConfig& cc,
+             std::uint32_t seed, double pop_rate) {
+  const rtl::sim::Cycle cycles = 8000;  // at least three refresh intervals
+  auto ref = rtl::pipeline::make_memory_port(MemoryModel::kReference, "in-order", "eager", dimm, cc, false);
+  auto fast = rtl::pipeline::make_memory_port(MemoryModel::kAuto, "in-order", "eager", dimm, cc, true);
+  const Run a = drive(*ref, seed, cycles, pop_rate);
+  const Run b = drive(*fast, seed, cycles, pop_rate);
+  ASSERT_EQ(a.done.size(), b.done.size());
+  ASSERT_GT(a.done.size(), 400u);
+  for (std::size_t i = 0; i < a.done.size(); ++i) {
+    SCOPED_TRACE(::testing::Message() << "completion " << i << ": reference " << a.done[i]);
+    ASSERT_EQ(a.at[i], b.at[i]);
+    ASSERT_EQ(a.done[i].request.id, b.done[i].request.id);
+    ASSERT_EQ(a.done[i].request.arrival, b.done[i].request.arrival);
+    ASSERT_EQ(a.done[i].outcome, b.done[i].outcome);
+    ASSERT_EQ(a.done[i].first_command, b.done[i].first_command);
+    ASSERT_EQ(a.done[i].column_command, b.done[i].column_command);
+    ASSERT_EQ(a.done[i].data.first, b.done[i].data.first);
+    ASSERT_EQ(a.done[i].data.last, b.done[i].data.last);
+  }
+  const auto& x = ref->controller_stats();
+  const auto& y = fast->controller_stats();
+  EXPECT_EQ(x.requests, y.requests);
+  EXPECT_EQ(x.row_hits, y.row_hits);
+  EXPECT_EQ(x.row_misses, y.row_misses);
+  EXPECT_EQ(x.row_conflicts, y.row_conflicts);
+  EXPECT_EQ(x.command_cycles, y.command_cycles);
+  EXPECT_EQ(x.refresh_cycles, y.refresh_cycles);
+  EXPECT_EQ(x.latency_sum, y.latency_sum);
+  const auto& p = ref->dimm_stats();
+  const auto& q = fast->dimm_stats();
+  EXPECT_EQ(p.commands, q.commands);
+  EXPECT_EQ(p.refreshes, q.refreshes);
+  EXPECT_GE(q.refreshes, 3u);
+  EXPECT_EQ(p.precharge_alls, q.precharge_alls);
+  for (std::size_t k = 0; k < p.banks.size(); ++k) {
+    EXPECT_EQ(p.banks[k].activates, q.banks[k].activates);
+    EXPECT_EQ(p.banks[k].precharges, q.banks[k].precharges);
+    EXPECT_EQ(p.banks[k].open_cycles, q.banks[k].open_cycles);
+  }
+  EXPECT_EQ(ref->pending(), fast->pending());
+  EXPECT_EQ(ref->in_flight(), fast->in_flight());
+}
+
+TEST(FastInOrderPort, EqualsTheReferenceController) {
+  const auto grades = {rtl::sdram::presets::pc100_cl2(), rtl::sdram::presets::pc100_cl3()};
+  std::uint32_t seed = 1;
+  for (const auto& grade : grades)
+    for (int bl : {1, 2, 4, 8})
+      for (std::size_t queue : {std::size_t{1}, std::size_t{8}})
+        for (std::size_t ret : {std::size_t{1}, std::size_t{8}})
+          for (double pop : {1.0, 0.3}) {
+            SCOPED_TRACE(::testing::Message() << grade.name << " BL" << bl << " queue " << queue
+                                              << " return " << ret << " pop " << pop);
+            rtl::sdram::DimmConfig d;
+            d.timing = grade;
+            d.burst_length = bl;
+            compare(d, rtl::sdram::ControllerConfig{queue, ret}, seed++, pop);
+          }
+  // PC133 at its own clock.
+  rtl::sdram::DimmConfig d133;
+  d133.timing = rtl::sdram::presets::pc133_cl3();
+  d133.clock = rtl::sim::clocks::pc133();
+  compare(d133, rtl::sdram::ControllerConfig{}, 99, 1.0);
+}
+
+}  // namespace
+}  // namespace voxcast::test
