@@ -118,7 +118,7 @@ struct DimmWord {
 template <PrecisionProfile P>
 class Vizard2Memory {
  public:
-  Vizard2Memory(const bittrue::VoxelMemory& memory)
+  explicit Vizard2Memory(const bittrue::VoxelMemory& memory)
       : memory_(memory), banks_(memory),
         hx_(static_cast<std::uint64_t>((memory.dims[0] + 1) / 2)),
         hxy_(hx_ * static_cast<std::uint64_t>((memory.dims[1] + 1) / 2)) {}

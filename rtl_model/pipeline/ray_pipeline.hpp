@@ -112,6 +112,7 @@ class RayPipeline {
     // flight behind an early-terminated ray have drained.
     while (written_ < order_.size() || !quiet()) {
       const std::uint64_t events_before = events_;
+      const std::uint64_t commands_before = config_.fast_forward ? commands() : 0;
       const StallStats stalls_before = stats_.stalls;
       cycle(now);
       ++stats_.evaluated_cycles;
@@ -126,12 +127,12 @@ class RayPipeline {
           deadlock(now);
         }
       }
-      // Fast-forward: a cycle in which nothing moved repeats until the first
-      // cycle at which a timed condition can change (a unit's result becomes
-      // ready, a ray's set-up ends, a controller can act); its stalls and
-      // FIFO samples repeat with it.
+      // Fast-forward: a cycle in which nothing moved and no controller acted
+      // repeats until the first cycle at which a timed condition can change
+      // (a unit's result becomes ready, a ray's set-up ends, a controller can
+      // act); its stalls and FIFO samples repeat with it.
       Cycle next = now + 1;
-      if (config_.fast_forward && events_ == events_before) {
+      if (config_.fast_forward && events_ == events_before && commands() == commands_before) {
         next = std::max(next, next_event(now));
         if (next - last_progress > config_.deadlock_cycles) deadlock(now);
         const Cycle skipped = next - now - 1;
@@ -226,19 +227,26 @@ class RayPipeline {
   }
 
   // The first cycle after `now` at which a unit or controller can act when
-  // nothing moved at `now` (a far-future cycle if nothing is timed: deadlock).
+  // nothing moved and no controller acted at `now` (a far-future cycle if
+  // nothing is timed: deadlock). A unit whose input was ready at `now` and
+  // did not move is blocked by a FIFO, a slot or a controller queue, which
+  // only an event frees; what waits for time is the results not yet ready,
+  // a ray still in set-up, the set-up interval and the controllers.
   Cycle next_event(Cycle now) const {
     Cycle t = std::numeric_limits<Cycle>::max() / 2;
     auto at = [&t, now](Cycle c) { t = std::min(t, std::max(c, now + 1)); };
+    auto later = [&at, now](Cycle c) {
+      if (c > now) at(c);
+    };
     for (const auto& p : ports_) at(p->wake());
     for (const auto& rq : req_)
-      if (rq.valid()) at(rq.front().ready);
-    if (miss_.valid()) at(miss_.front().ready);
-    if (interp_.valid()) at(interp_.front().ready);
-    if (class_.valid()) at(class_.front().ready);
-    if (shade_.valid()) at(shade_.front().ready);
-    if (issue_q_.valid()) at(slots_[static_cast<std::size_t>(issue_q_.front())].ready_at);
-    if (next_pixel_ < order_.size()) at(setup_next_);
+      if (rq.valid()) later(rq.front().ready);
+    if (miss_.valid()) later(miss_.front().ready);
+    if (interp_.valid()) later(interp_.front().ready);
+    if (class_.valid()) later(class_.front().ready);
+    if (shade_.valid()) later(shade_.front().ready);
+    if (issue_q_.valid()) later(slots_[static_cast<std::size_t>(issue_q_.front())].ready_at);
+    if (next_pixel_ < order_.size()) later(setup_next_);
     return t;
   }
 
@@ -420,6 +428,7 @@ class RayPipeline {
   void issue(Cycle now) {
     while (issue_q_.valid() && slots_[static_cast<std::size_t>(issue_q_.front())].finished) {
       const int i = issue_q_.pop();
+      ++events_;
       slots_[static_cast<std::size_t>(i)].in_issue = false;
       burst_count_ = 0;
       try_free(i);
@@ -543,6 +552,7 @@ class RayPipeline {
     if (s.free || !s.finished || s.outstanding != 0 || s.in_issue) return;
     s.free = true;
     free_.push(slot);
+    ++events_;
   }
 
   // ---- Errors and the end of the frame --------------------------------------------------------
