@@ -9,6 +9,7 @@
 #include "cosim/engines.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
+#include "rtl_model/engine.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -50,16 +51,20 @@ std::vector<BenchResult> run_bench(const ref::Scene& scene, const std::vector<st
         return fs.samples;
       }, repeats, r);
     } else {
-      check_fixed_point(scene, sv, e == Engine::Hls);
+      check_fixed_point(scene, sv, e != Engine::BitTrue);
       const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
       const bittrue::VoxelMemory memory =
           bittrue::make_voxel_memory(scene.precision, sv.volume, sv.gradients);
       time_frames([&] {
         ref::FrameStats fs;
-        if (e == Engine::Hls)
+        if (e == Engine::Hls) {
           hls_render_image(setup, memory, threads, &fs);
-        else
+        } else if (e == Engine::Rtl) {
+          // Simulated samples per host second (the simulation is one thread).
+          return rtl::rtl_render(setup, memory, rtl::vizard2_baseline()).stats.samples;
+        } else {
           bittrue::bt_render_image(setup, memory, threads, &fs);
+        }
         return fs.samples;
       }, repeats, r);
     }

@@ -16,6 +16,7 @@
 #include "cosim/image_io.hpp"
 #include "cosim/warnings.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
+#include "rtl_model/engine.hpp"
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
@@ -73,6 +74,9 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
                 {"samples", s.stats.samples}};
   j["timing"] = {{"load_seconds", s.load_seconds}, {"render_seconds", s.render_seconds},
                  {"threads", s.threads}};
+  if (s.engine == Engine::Rtl)
+    j["rtl"] = {{"cycles", s.rtl_cycles}, {"fps", s.rtl_fps},
+                {"ns_per_sample", s.rtl_ns_per_sample}, {"row_hit_rate", s.rtl_row_hit_rate}};
   j["written"] = s.written;
   std::ofstream out(path);
   if (!out) throw Error(path + ": cannot write the report");
@@ -83,12 +87,25 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
 // back to [0, 1] for writing.
 ref::Image render_view(const ref::Scene& scene, const ref::Volume& volume,
                        const ref::GradientField& gradients, const ref::CameraPose& pose,
-                       Engine engine, const bittrue::VoxelMemory* memory, ref::FrameStats& fs) {
+                       Engine engine, const bittrue::VoxelMemory* memory, ref::FrameStats& fs,
+                       RenderSummary& summary) {
   const ref::RenderInputs in = ref::make_render_inputs(scene, volume, gradients, pose);
   if (engine == Engine::Ref) return ref::render_image(in, scene.render.threads, &fs);
   const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
   if (engine == Engine::BitTrue)
     return bittrue::bt_render_image(setup, *memory, scene.render.threads, &fs).to_image();
+  if (engine == Engine::Rtl) {
+    const rtl::RtlResult r = rtl::rtl_render(setup, *memory, rtl::vizard2_baseline());
+    fs.rays = r.stats.rays;
+    fs.rays_hit = r.stats.rays_hit;
+    fs.rays_terminated_early = r.stats.rays_ert;
+    fs.samples = r.stats.samples;
+    summary.rtl_cycles += static_cast<double>(r.stats.cycles);
+    summary.rtl_ns_per_sample = r.stats.ns_per_sample();
+    summary.rtl_fps = r.stats.fps();
+    summary.rtl_row_hit_rate = r.stats.row_hit_rate();
+    return r.image.to_image();
+  }
   return hls_render_image(setup, *memory, scene.render.threads, &fs).to_image();
 }
 
@@ -98,7 +115,8 @@ Engine parse_engine(const std::string& name) {
   if (name == "ref") return Engine::Ref;
   if (name == "bittrue") return Engine::BitTrue;
   if (name == "hls") return Engine::Hls;
-  throw Error("unknown engine \"" + name + "\" (ref, bittrue, hls)");
+  if (name == "rtl") return Engine::Rtl;
+  throw Error("unknown engine \"" + name + "\" (ref, bittrue, hls, rtl)");
 }
 
 const char* to_string(Engine e) {
@@ -106,6 +124,7 @@ const char* to_string(Engine e) {
     case Engine::Ref: return "refmodel (double precision)";
     case Engine::BitTrue: return "bit-true reference";
     case Engine::Hls: return "hls kernels";
+    case Engine::Rtl: return "rtl cycle model (VIZARD II baseline)";
   }
   return "?";
 }
@@ -126,7 +145,7 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   // The fixed-point engines hold the volume as voxel words in 8 banks.
   std::optional<bittrue::VoxelMemory> memory;
   if (options.engine != Engine::Ref) {
-    check_fixed_point(scene, sv, options.engine == Engine::Hls);
+    check_fixed_point(scene, sv, options.engine == Engine::Hls || options.engine == Engine::Rtl);
     for (const std::string& w : fixed_point_warnings(scene, volume))
       std::cerr << "voxcast: warning: " << w << "\n";
     memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
@@ -140,7 +159,7 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   for (const View& view : views_of(scene)) {
     ref::FrameStats fs;
     const ref::Image img = render_view(scene, volume, gradients, view.pose, options.engine,
-                                       memory ? &*memory : nullptr, fs);
+                                       memory ? &*memory : nullptr, fs, s);
     s.stats.samples += fs.samples;
     s.stats.rays += fs.rays;
     s.stats.rays_hit += fs.rays_hit;
@@ -176,6 +195,10 @@ void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummar
      << "rays     " << 100.0 * static_cast<double>(s.stats.rays_hit) / rays << "% hit the volume, "
      << 100.0 * static_cast<double>(s.stats.rays_terminated_early) / rays << "% terminated early, "
      << std::setprecision(1) << static_cast<double>(s.stats.samples) / 1e6 << " M samples\n";
+  if (s.engine == Engine::Rtl)
+    os << std::setprecision(2) << "card     " << s.rtl_cycles << " cycles at 100 MHz: "
+       << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample << " ns/sample, row hit rate "
+       << 100.0 * s.rtl_row_hit_rate << "%\n";
   for (const std::string& w : s.written) os << "wrote    " << w << "\n";
 }
 

@@ -10,8 +10,8 @@
 
 namespace voxcast::cosim {
 
-enum class Engine { Ref, BitTrue, Hls };
-Engine parse_engine(const std::string& name);  // "ref" | "bittrue" | "hls"
+enum class Engine { Ref, BitTrue, Hls, Rtl };
+Engine parse_engine(const std::string& name);  // "ref" | "bittrue" | "hls" | "rtl"
 const char* to_string(Engine e);
 
 struct RenderOptions {
@@ -29,7 +29,11 @@ struct RenderSummary {
   double render_seconds = 0.0;
   int threads = 0;
   Engine engine = Engine::Ref;
-  ref::FrameStats stats;  // summed over every frame and eye
+  ref::FrameStats stats;
+  double rtl_cycles = 0.0;         // summed over frames (rtl engine)
+  double rtl_ns_per_sample = 0.0;  // of the last frame
+  double rtl_fps = 0.0;
+  double rtl_row_hit_rate = 0.0;  // summed over every frame and eye
   std::vector<std::string> written;
 };
 

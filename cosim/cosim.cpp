@@ -16,6 +16,7 @@
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 #include "refmodel/volume/loaders.hpp"
+#include "rtl_model/engine.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -103,7 +104,27 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   r.samples_hls = fs_hls.samples;
 
   r.bit_exact = !r.hls_ran || hls.pixels == bt.pixels;
-  if (!r.bit_exact) {
+  // The cycle model: the same pixels as hls, and how many cycles they take.
+  rtl::RtlResult rtl_result;
+  if (r.hls_ran) {
+    t0 = Clock::now();
+    rtl_result = rtl::rtl_render(setup, memory, rtl::vizard2_baseline());
+    r.seconds_rtl = seconds_since(t0);
+    r.rtl_exact = rtl_result.image.pixels == hls.pixels;
+    r.rtl_cycles = rtl_result.stats.cycles;
+    r.rtl_fps = rtl_result.stats.fps();
+    r.rtl_ns_per_sample = rtl_result.stats.ns_per_sample();
+    r.bit_exact = r.bit_exact && r.rtl_exact;
+  }
+  if (!r.bit_exact && !r.rtl_exact && hls.pixels == bt.pixels) {
+    // hls agrees with bit-true: the cycle model is the one that differs.
+    Mismatch& m = r.mismatch;
+    first_difference(rtl_result.image, hls, m.x, m.y);
+    m.unit = bittrue::Unit::Output;
+    m.engine = "rtl";
+    m.reproducer = write_reproducer(out_dir, scene, m);
+    r.written.push_back(m.reproducer);
+  } else if (!r.bit_exact) {
     Mismatch& m = r.mismatch;
     first_difference(hls, bt, m.x, m.y);
     bittrue::RayTrace bt_trace;
@@ -132,8 +153,26 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   nlohmann::json j;
   j["scene"] = scene.origin;
   j["bit_exact"] = r.hls_ran ? nlohmann::json(r.bit_exact) : nlohmann::json(nullptr);
-  j["engines"] = r.hls_ran ? nlohmann::json{"float", "bittrue", "hls"}
+  j["engines"] = r.hls_ran ? nlohmann::json{"float", "bittrue", "hls", "rtl"}
                            : nlohmann::json{"float", "bittrue"};
+  if (r.hls_ran) {
+    const rtl::RtlStats& st = rtl_result.stats;
+    j["rtl_bit_exact"] = r.rtl_exact;
+    j["cycles"] = st.cycles;
+    j["fps"] = st.fps();
+    j["ns_per_sample"] = st.ns_per_sample();
+    j["samples"] = st.samples;
+    j["row_hit_rate"] = st.row_hit_rate();
+    j["stalls"] = {{"issue_no_ray", st.stalls.issue_no_ray},
+                   {"issue_buffer_full", st.stalls.issue_buffer_full},
+                   {"issue_memory_full", st.stalls.issue_memory_full},
+                   {"issue_idle", st.stalls.issue_idle},
+                   {"interp_wait_memory", st.stalls.interp_wait_memory},
+                   {"interp_blocked", st.stalls.interp_blocked},
+                   {"setup_no_slot", st.stalls.setup_no_slot},
+                   {"composite_blocked", st.stalls.composite_blocked}};
+    j["rtl_config"] = "VIZARD II baseline: in-order open page, linear layout, scan-line order";
+  }
   if (!r.hls_ran)
     j["note"] = "the hls engine is not compiled for this profile (" + hls_supported_profiles() +
                 "); the accuracy figures are the bit-true engine's";
@@ -144,12 +183,14 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   for (auto it = acc.begin(); it != acc.end(); ++it) j[it.key()] = it.value();
   j["diff_heat_map_full_scale_lsb"] = 4.0;
   if (!r.bit_exact)
-    j["mismatch"] = {{"pixel", {r.mismatch.x, r.mismatch.y}},
+    j["mismatch"] = {{"engine", r.mismatch.engine},
+                     {"pixel", {r.mismatch.x, r.mismatch.y}},
                      {"sample", r.mismatch.sample},
                      {"unit", bittrue::to_string(r.mismatch.unit)},
                      {"reproducer", r.mismatch.reproducer}};
-  j["samples"] = {{"float", r.samples_float}, {"hls", r.samples_hls}};
-  j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls}};
+  j["samples_by_engine"] = {{"float", r.samples_float}, {"hls", r.samples_hls}};
+  j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls},
+                  {"rtl", r.seconds_rtl}};
   j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
                 {"mode", ref::to_string(scene.render.mode)},
                 {"oversampling", scene.render.oversampling}};
@@ -172,7 +213,7 @@ void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimR
      << "profile    " << scene.precision_name << "\n"
      << "bit-exact  "
      << (!r.hls_ran ? "not checked: the hls engine is not compiled for this profile"
-                    : r.bit_exact ? "yes: hls == bit-true on every pixel" : "NO")
+                    : r.bit_exact ? "yes: hls == bit-true == rtl on every pixel" : "NO")
      << "\n"
      << "accuracy   " << (r.hls_ran ? "hls" : "bit-true") << " vs float: PSNR " << a.psnr_db << " dB, max " << a.max_abs_err_lsb
      << " LSB, rms " << std::setprecision(3) << a.rms_err_lsb << " LSB, " << std::setprecision(2)
@@ -180,6 +221,9 @@ void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimR
      << "speed      float " << rate(r.samples_float, r.seconds_float) << " M samples/s, hls "
      << rate(r.samples_hls, r.seconds_hls) << " M samples/s, bit-true "
      << rate(r.samples_float, r.seconds_bittrue) << " M samples/s (float's sample count)\n";
+  if (r.hls_ran)
+    os << "card       rtl model (VIZARD II baseline): " << r.rtl_cycles << " cycles, "
+       << r.rtl_fps << " frames/s at 100 MHz, " << r.rtl_ns_per_sample << " ns/sample\n";
   for (const std::string& w : r.written) os << "wrote      " << w << "\n";
 }
 

@@ -17,15 +17,19 @@ struct Mismatch {
   std::uint64_t sample = 0;       // index along its ray
   bittrue::Unit unit = bittrue::Unit::Output;
   std::string reproducer;         // path of the saved reproducer scene
+  std::string engine = "hls";     // the engine that differs from the reference
 };
 
 struct CosimResult {
   bool hls_ran = false;       // the hls engine is compiled for the profile
-  bool bit_exact = false;     // hls == bit-true on every pixel (true when !hls_ran)
+  bool bit_exact = false;     // hls == bit-true == rtl on every pixel (true when !hls_ran)
+  bool rtl_exact = true;      // rtl == hls
+  std::uint64_t rtl_cycles = 0;
+  double rtl_fps = 0.0, rtl_ns_per_sample = 0.0;
   Accuracy accuracy;          // hls against the float reference
   Mismatch mismatch;          // when !bit_exact
   std::uint64_t samples_float = 0, samples_hls = 0;
-  double seconds_float = 0, seconds_bittrue = 0, seconds_hls = 0;
+  double seconds_float = 0, seconds_bittrue = 0, seconds_hls = 0, seconds_rtl = 0;
   std::vector<std::string> written;
 };
 

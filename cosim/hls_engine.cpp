@@ -5,47 +5,12 @@
 #include <type_traits>
 
 #include "cosim/engines.hpp"
-#include "hls/vizard2_top.hpp"
+#include "hls/host_frame.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
-#include "refmodel/precision/preset_profiles.hpp"
 
 namespace voxcast::cosim {
 namespace {
-
-// The profiles the hls engine is compiled for: the presets. A profile is a
-// template parameter of every kernel (as a synthesized design fixes its
-// widths), so each one here is one instantiation of the whole pipeline.
-template <PrecisionProfile... Ps>
-struct ProfileList {};
-using CompiledProfiles = ProfileList<kVizard2, kBalanced, kPrecise>;
-constexpr const char* kCompiledNames = "the presets vizard2, balanced, precise";
-
-hls::FrameMode frame_mode(ref::RenderMode m) {
-  switch (m) {
-    case ref::RenderMode::Shaded: return hls::FrameMode::Shaded;
-    case ref::RenderMode::Unshaded: return hls::FrameMode::Unshaded;
-    case ref::RenderMode::Mip: return hls::FrameMode::Mip;
-  }
-  return hls::FrameMode::Shaded;
-}
-
-// The frame state is megabytes for the wide profiles (tables): on the heap.
-template <PrecisionProfile P>
-std::unique_ptr<hls::FrameState<P>> load_frame(const bittrue::FrameSetup& fs) {
-  auto f = std::make_unique<hls::FrameState<P>>();
-  f->geometry = hls::host::load_geometry_registers<P>(fs.regs);
-  if (fs.regs.perspective) hls::host::load_rsqrt_rom<P>(fs.rsqrt_seed, f->rsqrt);
-  if (!hls::host::load_class_table<P>(f->class_table, fs.class_table))
-    throw Error("hls engine: classification table size does not match the profile");
-  f->reflectance_regs = hls::host::reflectance_registers<P>(fs.regs);
-  if (fs.regs.mode == ref::RenderMode::Shaded &&
-      !hls::host::load_reflectance_map<P>(f->reflectance, fs.rm_diffuse, fs.rm_specular))
-    throw Error("hls engine: reflectance map size does not match the profile");
-  f->compositor = hls::host::compositor_registers<P>(fs.regs);
-  f->mode = frame_mode(fs.regs.mode);
-  return f;
-}
 
 template <PrecisionProfile P>
 std::array<std::uint32_t, 4> to_array(const hls::OutputPixel<P>& px) {
@@ -58,7 +23,7 @@ std::array<std::uint32_t, 4> to_array(const hls::OutputPixel<P>& px) {
 template <PrecisionProfile P>
 ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
                        int threads, ref::FrameStats* stats) {
-  const auto frame = load_frame<P>(fs);
+  const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
   const hls::host::BitTrueBanks<P> banks(memory);
   const int w = fs.regs.width, h = fs.regs.height;
   std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
@@ -133,7 +98,7 @@ struct Recorder {
 template <PrecisionProfile P>
 bittrue::RayTrace trace(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory, int px,
                         int py) {
-  const auto frame = load_frame<P>(fs);
+  const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
   const hls::host::BitTrueBanks<P> banks(memory);
   bittrue::RayTrace t;
   Recorder<P> rec{t};
@@ -142,26 +107,20 @@ bittrue::RayTrace trace(const bittrue::FrameSetup& fs, const bittrue::VoxelMemor
   return t;
 }
 
-// Calls fn.template operator()<P>() for the compiled profile equal to `p`.
-template <class Fn, PrecisionProfile... Ps>
-bool dispatch(const PrecisionProfile& p, Fn&& fn, ProfileList<Ps...>) {
-  return ((p == Ps ? (fn.template operator()<Ps>(), true) : false) || ...);
-}
-
 template <class Fn>
 void with_profile(const PrecisionProfile& p, Fn&& fn) {
-  if (!dispatch(p, fn, CompiledProfiles{}))
+  if (!hls::host::dispatch_profile(p, fn))
     throw Error(std::string("this precision profile is not compiled into the hls engine (") +
-                kCompiledNames + ")");
+                hls::host::kCompiledProfileNames + ")");
 }
 
 }  // namespace
 
 bool hls_supports(const PrecisionProfile& p) {
-  return dispatch(p, []<PrecisionProfile>() {}, CompiledProfiles{});
+  return hls::host::dispatch_profile(p, []<PrecisionProfile>() {});
 }
 
-std::string hls_supported_profiles() { return kCompiledNames; }
+std::string hls_supported_profiles() { return hls::host::kCompiledProfileNames; }
 
 ref::QuantImage hls_render_image(const bittrue::FrameSetup& setup,
                                  const bittrue::VoxelMemory& memory, int threads,

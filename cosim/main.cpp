@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
       ->required();
   render->add_option("--report", render_opts.report_json, "Write a JSON report here");
   std::string engine_name = "ref";
-  render->add_option("--engine", engine_name, "ref (double), bittrue (bit-true reference) or hls")
+  render->add_option("--engine", engine_name,
+                     "ref (double), bittrue (bit-true reference), hls, or rtl (cycle model)")
       ->capture_default_str();
   add_set_option(*render, render_sets);
 
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
 
   // bench SCENE
   std::string bench_scene;
-  std::vector<std::string> bench_engines{"ref", "bittrue", "hls"};
+  std::vector<std::string> bench_engines{"ref", "bittrue", "hls", "rtl"};
   int bench_repeats = 5;
   Overrides bench_sets;
   CLI::App* bench = app.add_subcommand(
@@ -107,10 +108,11 @@ int main(int argc, char** argv) {
       const auto r = voxcast::cosim::run_cosim(scene, cosim_out);
       voxcast::cosim::print_cosim_summary(std::cout, scene, r);
       if (!r.bit_exact) {
-        std::cerr << "voxcast: hls and bit-true differ at pixel (" << r.mismatch.x << ", "
-                  << r.mismatch.y << "), sample " << r.mismatch.sample << ", first in the "
-                  << voxcast::bittrue::to_string(r.mismatch.unit) << "; reproducer "
-                  << r.mismatch.reproducer << "\n";
+        std::cerr << "voxcast: " << r.mismatch.engine << " differs from "
+                  << (r.mismatch.engine == "rtl" ? "hls" : "bit-true") << " at pixel ("
+                  << r.mismatch.x << ", " << r.mismatch.y << "), sample " << r.mismatch.sample
+                  << ", first in the " << voxcast::bittrue::to_string(r.mismatch.unit)
+                  << "; reproducer " << r.mismatch.reproducer << "\n";
         return 3;
       }
     } else if (*bench) {

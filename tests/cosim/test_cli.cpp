@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "cosim/image_io.hpp"
@@ -95,6 +96,48 @@ TEST(Cli, ErrorsAreOneLineAndNonZero) {
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "not one line: " << r.output;
   }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Cli, EveryFixedPointEngineWritesTheSameImage) {
+  const auto d = temp_dir("engines");
+  for (const char* engine : {"bittrue", "hls", "rtl"}) {
+    const Command r = run("render " + scene("mip.toml") + " --engine " + engine + " -o " +
+                          (d / (std::string(engine) + ".exr")).string() +
+                          " --set render.width=24 --set render.height=20");
+    ASSERT_EQ(r.status, 0) << engine << ": " << r.output;
+    if (std::string(engine) == "rtl") {
+      EXPECT_NE(r.output.find("cycles at 100 MHz"), std::string::npos);
+    }
+  }
+  const auto bt = voxcast::cosim::read_image((d / "bittrue.exr").string());
+  for (const char* engine : {"hls", "rtl"}) {
+    const auto img = voxcast::cosim::read_image((d / (std::string(engine) + ".exr")).string());
+    ASSERT_EQ(img.pixels.size(), bt.pixels.size());
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+      ASSERT_EQ(img.pixels[i], bt.pixels[i]) << engine;
+    }
+  }
+}
+
+TEST(Cli, CosimReportHasTheDocumentedKeys) {
+  const auto d = temp_dir("cosim");
+  const Command r = run("cosim " + std::string(VOXCAST_SOURCE_DIR) +
+                        "/tests/regress/grazing_faces.toml --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(d / "report.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  for (const char* key : {"\"bit_exact\": true", "\"engines\"", "\"psnr_db\"", "\"max_abs_err_lsb\"",
+                          "\"rms_err_lsb\"", "\"pct_within_1lsb\"", "\"profile\"", "\"cycles\"",
+                          "\"fps\"", "\"ns_per_sample\"", "\"samples\"", "\"row_hit_rate\"",
+                          "\"stalls\""})
+    EXPECT_NE(text.str().find(key), std::string::npos) << key;
+  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png"})
+    EXPECT_TRUE(std::filesystem::exists(d / f)) << f;
 }
 
 }  // namespace
