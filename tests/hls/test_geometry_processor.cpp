@@ -310,12 +310,6 @@ inline constexpr PrecisionProfile kNarrowSeed = [] {
 }();
 TEST(GeometryProcessor, BitExactOffPresetProfile) { check_all_cases_bit_exact<kNarrowSeed>(); }
 
-TEST(GeometryProcessor, ConstexprPresetsMirrorPresetsCpp) {
-  EXPECT_EQ(kVizard2, preset_profile("vizard2"));
-  EXPECT_EQ(kBalanced, preset_profile("balanced"));
-  EXPECT_EQ(kPrecise, preset_profile("precise"));
-}
-
 // ---- (b) against the float reference -----------------------------------------------------------
 // Derived bounds (df, pf, tf, sb = the profile's dir/pos/t frac bits and seed bits):
 //

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "refmodel/error.hpp"
+#include "refmodel/precision/presets.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {
@@ -170,6 +172,44 @@ TEST(Scene, WritesTomlThatReadsBackEqual) {
     EXPECT_EQ(b.camera.pose.eye, a.camera.pose.eye) << name;
     ASSERT_EQ(b.tf_points.size(), a.tf_points.size()) << name;
     EXPECT_EQ(b.tf_points.back().alpha, a.tf_points.back().alpha) << name;
+  }
+}
+
+}  // namespace
+}  // namespace voxcast::test
+
+namespace voxcast::test {
+namespace {
+
+// docs/scenes.md's [precision] table lists each width's value in the three
+// presets (columns: default = balanced, vizard2, precise); they must be the
+// values the presets really have.
+TEST(Scene, DocsListThePresetValues) {
+  std::ifstream in(std::string(VOXCAST_SOURCE_DIR) + "/docs/scenes.md");
+  ASSERT_TRUE(in);
+  std::map<std::string, std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("| `precision.", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, '|');) {
+      const auto b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
+      cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+    }
+    rows[cells.at(1)] = cells;  // cells[0] is before the first '|'
+  }
+  const PrecisionProfile balanced = preset_profile("balanced"),
+                         vizard2 = preset_profile("vizard2"), precise = preset_profile("precise");
+  for (const ProfileField& f : profile_fields()) {
+    const std::string key = std::string("`precision.") + f.name + "`";
+    ASSERT_TRUE(rows.count(key)) << key << " has no row in docs/scenes.md";
+    const auto& c = rows[key];
+    ASSERT_GE(c.size(), 7u) << key;
+    // The number leads the cell; a note may follow ("6 (unused)").
+    const auto number = [](const std::string& cell) { return cell.substr(0, cell.find(' ')); };
+    EXPECT_EQ(number(c[4]), std::to_string(balanced.*f.member)) << key << " (balanced column)";
+    EXPECT_EQ(number(c[5]), std::to_string(vizard2.*f.member)) << key << " (vizard2 column)";
+    EXPECT_EQ(number(c[6]), std::to_string(precise.*f.member)) << key << " (precise column)";
   }
 }
 
