@@ -24,23 +24,16 @@
 #include "refmodel/precision/preset_profiles.hpp"
 #include "refmodel/render/raycaster.hpp"
 
+#include "preset_types.hpp"
+
 namespace {
 
 using namespace voxcast;
 namespace bt = voxcast::bittrue;
 
-template <PrecisionProfile P>
-struct Profile {
-  static constexpr PrecisionProfile value = P;
-};
-using Presets = ::testing::Types<Profile<kVizard2>, Profile<kBalanced>, Profile<kPrecise>>;
-struct PresetNames {
-  template <class T>
-  static std::string GetName(int i) {
-    static const char* const names[] = {"vizard2", "balanced", "precise"};
-    return names[i];
-  }
-};
+using test::Profile;
+using Presets = test::ThreePresets;
+using PresetNames = test::ThreePresetNames;
 
 // The default scene's transfer function (scenes/default.toml), its control points
 // spread over the profile's value range, and its material.

@@ -35,15 +35,14 @@
 #include "refmodel/precision/preset_profiles.hpp"
 #include "refmodel/render/raycaster.hpp"
 
+#include "preset_types.hpp"
+
 namespace {
 
 using namespace voxcast;
 namespace bt = voxcast::bittrue;
 
-template <PrecisionProfile P>
-struct Profile {
-  static constexpr PrecisionProfile value = P;
-};
+using test::Profile;
 
 // The other mode of each preset, and the bilinear grid's odd cases.
 constexpr PrecisionProfile kBalancedNearest = [] {
