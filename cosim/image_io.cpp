@@ -1,6 +1,7 @@
 #include "cosim/image_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <vector>
@@ -30,6 +31,16 @@ std::uint8_t to_8bit(double v) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
 }
 
+// 8-bit RGB for people: the premultiplied image composited over the background.
+std::vector<std::uint8_t> to_rgb8(const ref::Image& image, const glm::dvec3& background) {
+  std::vector<std::uint8_t> rgb(3 * image.pixels.size());
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const glm::dvec4& p = image.pixels[i];
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = to_8bit(p[c] + (1.0 - p.a) * background[c]);
+  }
+  return rgb;
+}
+
 }  // namespace
 
 void check_image_path(const std::string& path) {
@@ -49,11 +60,7 @@ void write_image(const std::string& path, const ref::Image& image, const glm::dv
     spec.attribute("compression", "zip");
     write_pixels(path, spec, rgba.data());
   } else if (ext == ".png") {
-    std::vector<std::uint8_t> rgb(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const glm::dvec4& p = image.pixels[i];
-      for (int c = 0; c < 3; ++c) rgb[3 * i + c] = to_8bit(p[c] + (1.0 - p.a) * background[c]);
-    }
+    const std::vector<std::uint8_t> rgb = to_rgb8(image, background);
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
     write_pixels(path, spec, rgb.data());
   } else {
@@ -79,6 +86,38 @@ void write_exr_layers(const std::string& path, const std::vector<Layer>& layers)
         data[i * nch + 4 * li + c] = static_cast<float>(img.pixels[i][c]);
   }
   write_pixels(path, spec, data.data());
+}
+
+void write_animation(const std::string& path, const std::vector<ref::Image>& frames,
+                     const glm::dvec3& background, int frames_per_second) {
+  if (extension_of(path) != ".gif")
+    throw Error(path + ": unsupported animation type (use .gif)");
+  if (frames.empty()) throw Error(path + ": no frames to write");
+  if (frames_per_second < 1 || frames_per_second > 100)
+    throw Error(path + ": animation rate " + std::to_string(frames_per_second) +
+                " frames/s is outside 1..100");
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out || !out->supports("multiimage"))
+    throw Error(path + ": this OpenImageIO cannot write animated GIF (" + OIIO::geterror() + ")");
+  std::vector<OIIO::ImageSpec> specs;
+  for (const ref::Image& f : frames) {
+    if (f.width != frames.front().width || f.height != frames.front().height)
+      throw Error(path + ": animation frames differ in size");
+    OIIO::ImageSpec spec(f.width, f.height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("FramesPerSecond", OIIO::TypeRational, std::array<int, 2>{frames_per_second, 1}.data());
+    spec.attribute("oiio:LoopCount", 0);  // loop forever
+    specs.push_back(spec);
+  }
+  if (!out->open(path, static_cast<int>(specs.size()), specs.data()))
+    throw Error(path + ": " + out->geterror());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i > 0 && !out->open(path, specs[i], OIIO::ImageOutput::AppendSubimage))
+      throw Error(path + ": frame " + std::to_string(i) + ": " + out->geterror());
+    const std::vector<std::uint8_t> rgb = to_rgb8(frames[i], background);
+    if (!out->write_image(OIIO::TypeDesc::UINT8, rgb.data()))
+      throw Error(path + ": frame " + std::to_string(i) + ": " + out->geterror());
+  }
+  if (!out->close()) throw Error(path + ": " + out->geterror());
 }
 
 ref::Image read_image(const std::string& path) {

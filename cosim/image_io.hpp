@@ -27,6 +27,11 @@ struct Layer {
 };
 void write_exr_layers(const std::string& path, const std::vector<Layer>& layers);
 
+// An animated GIF (OpenImageIO's GIF writer; 256-colour palette per frame,
+// composited over the background like PNG), looping forever.
+void write_animation(const std::string& path, const std::vector<ref::Image>& frames,
+                     const glm::dvec3& background, int frames_per_second);
+
 // Reads an image written by write_image (any format OpenImageIO reads) as RGBA.
 ref::Image read_image(const std::string& path);
 

@@ -8,6 +8,7 @@
 #include "cosim/commands.hpp"
 #include "cosim/bench.hpp"
 #include "cosim/cosim.hpp"
+#include "cosim/flythrough.hpp"
 #include "cosim/regress.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
@@ -82,6 +83,21 @@ int main(int argc, char** argv) {
   bench->add_option("--repeat", bench_repeats, "Timed frames per engine")->capture_default_str();
   add_set_option(*bench, bench_sets);
 
+  // flythrough SCENE --out DIR
+  std::string fly_scene;
+  voxcast::cosim::FlythroughOptions fly_opts;
+  Overrides fly_sets;
+  CLI::App* fly = app.add_subcommand(
+      "flythrough",
+      "Fly along the scene's camera.path on the cycle model: frames, GIF, modelled frames/s");
+  fly->add_option("scene", fly_scene, "Scene file with a camera.path (TOML)")->required();
+  fly->add_option("--out", fly_opts.out_dir, "Output folder")->required();
+  fly->add_option("--frames", fly_opts.frames,
+                  "Frames along the path (default: render.frames if > 1, else 24)");
+  fly->add_option("--gif-fps", fly_opts.animation_fps, "Playback rate of the GIF")
+      ->capture_default_str();
+  add_set_option(*fly, fly_sets);
+
   // demo
   Overrides demo_sets;
   std::string demo_out = "out/demo";
@@ -119,6 +135,10 @@ int main(int argc, char** argv) {
       const auto scene = voxcast::ref::load_scene_file(bench_scene, bench_sets);
       voxcast::cosim::print_bench(std::cout, scene,
                                   voxcast::cosim::run_bench(scene, bench_engines, bench_repeats));
+    } else if (*fly) {
+      const auto scene = voxcast::ref::load_scene_file(fly_scene, fly_sets);
+      voxcast::cosim::print_flythrough(std::cout, scene,
+                                       voxcast::cosim::run_flythrough(scene, fly_opts));
     } else if (*regress) {
       const int failed = voxcast::cosim::run_regress(regress_opts, std::cout);
       if (failed > 0) {
