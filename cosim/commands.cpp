@@ -16,7 +16,9 @@
 #include "cosim/image_io.hpp"
 #include "cosim/warnings.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
+#include "cosim/rtl_json.hpp"
 #include "rtl_model/engine.hpp"
+#include "rtl_model/scene_config.hpp"
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
@@ -76,7 +78,9 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
                  {"threads", s.threads}};
   if (s.engine == Engine::Rtl)
     j["rtl"] = {{"cycles", s.rtl_cycles}, {"fps", s.rtl_fps},
-                {"ns_per_sample", s.rtl_ns_per_sample}, {"row_hit_rate", s.rtl_row_hit_rate}};
+                {"ns_per_sample", s.rtl_ns_per_sample}, {"row_hit_rate", s.rtl_row_hit_rate},
+                {"config", rtl_desc_json(scene.rtl)}};
+  if (s.engine == Engine::Rtl && s.vcd_commands > 0) j["rtl"]["vcd_commands"] = s.vcd_commands;
   j["written"] = s.written;
   std::ofstream out(path);
   if (!out) throw Error(path + ": cannot write the report");
@@ -88,14 +92,15 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
 ref::Image render_view(const ref::Scene& scene, const ref::Volume& volume,
                        const ref::GradientField& gradients, const ref::CameraPose& pose,
                        Engine engine, const bittrue::VoxelMemory* memory, ref::FrameStats& fs,
-                       RenderSummary& summary) {
+                       RenderSummary& summary, const rtl::trace::TraceOptions* trace) {
   const ref::RenderInputs in = ref::make_render_inputs(scene, volume, gradients, pose);
   if (engine == Engine::Ref) return ref::render_image(in, scene.render.threads, &fs);
   const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
   if (engine == Engine::BitTrue)
     return bittrue::bt_render_image(setup, *memory, scene.render.threads, &fs).to_image();
   if (engine == Engine::Rtl) {
-    const rtl::RtlResult r = rtl::rtl_render(setup, *memory, rtl::vizard2_baseline());
+    const rtl::RtlResult r = rtl::rtl_render(setup, *memory, rtl::rtl_config(scene.rtl), trace);
+    summary.vcd_commands += r.traced_commands;
     fs.rays = r.stats.rays;
     fs.rays_hit = r.stats.rays_hit;
     fs.rays_terminated_early = r.stats.rays_ert;
@@ -124,7 +129,7 @@ const char* to_string(Engine e) {
     case Engine::Ref: return "refmodel (double precision)";
     case Engine::BitTrue: return "bit-true reference";
     case Engine::Hls: return "hls kernels";
-    case Engine::Rtl: return "rtl cycle model (VIZARD II baseline)";
+    case Engine::Rtl: return "rtl cycle model";
   }
   return "?";
 }
@@ -142,6 +147,11 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   s.bits = volume.bits;
   s.threads = ref::worker_count(scene.render.threads);
   s.engine = options.engine;
+  if ((!options.vcd_path.empty() || !options.vcd_window.empty()) && options.engine != Engine::Rtl)
+    throw Error("--vcd and --vcd-window need --engine rtl (the trace is the cycle model's)");
+  if (!options.vcd_window.empty() && options.vcd_path.empty())
+    throw Error("--vcd-window needs --vcd FILE");
+  if (!options.vcd_window.empty()) rtl::trace::parse_window(options.vcd_window, "--vcd-window");
   // The fixed-point engines hold the volume as voxel words in 8 banks.
   std::optional<bittrue::VoxelMemory> memory;
   if (options.engine != Engine::Ref) {
@@ -155,11 +165,25 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
     const std::filesystem::path dir = std::filesystem::path(out).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir);
   }
+  // The VCD trace: the first view only (a trace is one frame's cycles).
+  std::ofstream vcd;
+  rtl::trace::TraceOptions trace;
+  if (!options.vcd_path.empty()) {
+    if (!options.vcd_window.empty()) trace = rtl::trace::parse_window(options.vcd_window, "--vcd-window");
+    const std::filesystem::path dir = std::filesystem::path(options.vcd_path).parent_path();
+    if (!dir.empty()) std::filesystem::create_directories(dir);
+    vcd.open(options.vcd_path);
+    if (!vcd) throw Error(options.vcd_path + ": cannot write the VCD trace");
+    trace.out = &vcd;
+  }
   const auto t_render = Clock::now();
+  bool first_view = true;
   for (const View& view : views_of(scene)) {
     ref::FrameStats fs;
     const ref::Image img = render_view(scene, volume, gradients, view.pose, options.engine,
-                                       memory ? &*memory : nullptr, fs, s);
+                                       memory ? &*memory : nullptr, fs, s,
+                                       first_view && trace.out ? &trace : nullptr);
+    first_view = false;
     s.stats.samples += fs.samples;
     s.stats.rays += fs.rays;
     s.stats.rays_hit += fs.rays_hit;
@@ -171,6 +195,11 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
     }
   }
   s.render_seconds = seconds_since(t_render);
+  if (trace.out) {
+    vcd.close();
+    if (!vcd) throw Error(options.vcd_path + ": error writing the VCD trace");
+    s.written.push_back(options.vcd_path);
+  }
   if (!options.report_json.empty()) {
     write_report(options.report_json, scene, s);
     s.written.push_back(options.report_json);
@@ -198,7 +227,11 @@ void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummar
   if (s.engine == Engine::Rtl)
     os << std::setprecision(2) << "card     " << s.rtl_cycles << " cycles at 100 MHz: "
        << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample << " ns/sample, row hit rate "
-       << 100.0 * s.rtl_row_hit_rate << "%\n";
+       << 100.0 * s.rtl_row_hit_rate << "%\n"
+       << "         " << scene.rtl.scheduler << " scheduler, " << scene.rtl.layout << " layout, "
+       << scene.rtl.traversal << " traversal, " << scene.rtl.ray_slots << " ray slots\n";
+  if (s.engine == Engine::Rtl && s.vcd_commands > 0)
+    os << "vcd      " << s.vcd_commands << " SDRAM commands inside the window\n";
   for (const std::string& w : s.written) os << "wrote    " << w << "\n";
 }
 

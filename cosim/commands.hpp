@@ -18,6 +18,10 @@ struct RenderOptions {
   std::vector<std::string> outputs;  // each .png or .exr; the same frames go to each
   std::string report_json;           // optional JSON report path
   Engine engine = Engine::Ref;
+  // rtl engine: a VCD trace of the first view (rtl_model/trace/), and its
+  // window of cycles "START:END" (empty: the whole frame).
+  std::string vcd_path = {};
+  std::string vcd_window = {};
 };
 
 // What one `render` did, for the summary line and the JSON report.
@@ -34,6 +38,7 @@ struct RenderSummary {
   double rtl_ns_per_sample = 0.0;  // of the last frame
   double rtl_fps = 0.0;
   double rtl_row_hit_rate = 0.0;  // summed over every frame and eye
+  std::uint64_t vcd_commands = 0;  // SDRAM commands inside the VCD window
   std::vector<std::string> written;
 };
 

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -16,7 +17,9 @@
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 #include "refmodel/volume/loaders.hpp"
+#include "cosim/rtl_json.hpp"
 #include "rtl_model/engine.hpp"
+#include "rtl_model/scene_config.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -108,7 +111,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   rtl::RtlResult rtl_result;
   if (r.hls_ran) {
     t0 = Clock::now();
-    rtl_result = rtl::rtl_render(setup, memory, rtl::vizard2_baseline());
+    rtl_result = rtl::rtl_render(setup, memory, rtl::rtl_config(scene.rtl));
     r.seconds_rtl = seconds_since(t0);
     r.rtl_exact = rtl_result.image.pixels == hls.pixels;
     r.rtl_cycles = rtl_result.stats.cycles;
@@ -171,7 +174,10 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
                    {"interp_blocked", st.stalls.interp_blocked},
                    {"setup_no_slot", st.stalls.setup_no_slot},
                    {"composite_blocked", st.stalls.composite_blocked}};
-    j["rtl_config"] = "VIZARD II baseline: in-order open page, linear layout, scan-line order";
+    j["rtl_config"] = rtl_desc_json(scene.rtl);
+    std::ostringstream config;
+    config << rtl::rtl_config(scene.rtl);
+    j["rtl_description"] = config.str();
   }
   if (!r.hls_ran)
     j["note"] = "the hls engine is not compiled for this profile (" + hls_supported_profiles() +
@@ -222,7 +228,8 @@ void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimR
      << rate(r.samples_hls, r.seconds_hls) << " M samples/s, bit-true "
      << rate(r.samples_float, r.seconds_bittrue) << " M samples/s (float's sample count)\n";
   if (r.hls_ran)
-    os << "card       rtl model (VIZARD II baseline): " << r.rtl_cycles << " cycles, "
+    os << "card       rtl model (" << scene.rtl.scheduler << " scheduler, " << scene.rtl.layout
+       << " layout, " << scene.rtl.traversal << " traversal): " << r.rtl_cycles << " cycles, "
        << r.rtl_fps << " frames/s at 100 MHz, " << r.rtl_ns_per_sample << " ns/sample\n";
   for (const std::string& w : r.written) os << "wrote      " << w << "\n";
 }

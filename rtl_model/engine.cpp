@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <ostream>
+#include <string>
 
 #include "hls/host_frame.hpp"
 #include "refmodel/error.hpp"
@@ -13,7 +14,7 @@ namespace {
 
 template <PrecisionProfile P>
 RtlResult render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
-                 const RtlConfig& config) {
+                 const RtlConfig& config, const trace::TraceOptions* trace) {
   if (memory.dims != fs.regs.dims) throw Error("rtl engine: voxel memory and frame set-up differ in dims");
   const auto frame = hls::host::load_frame_state<P>(fs, "rtl engine");
   const layout::Vizard2Layout layout(memory.dims);
@@ -21,8 +22,15 @@ RtlResult render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memo
       layout::make_address_mapping(config.mapping, layout.grid(), config.pipeline.dimm.geometry);
   pipeline::RayPipeline<P> pipe(*frame, memory, *mapping, config.pipeline, config.scheduler,
                                 config.refresh);
+  std::unique_ptr<trace::PipelineTrace> tracer;
+  if (trace) {
+    tracer = std::make_unique<trace::PipelineTrace>(*trace, config.pipeline.dimm.clock.period_ps(),
+                                                    config.pipeline.dimm.geometry, layout::kDimms);
+    pipe.attach_trace(*tracer);
+  }
   RtlResult r;
   r.image = pipe.run(fs.regs.width, fs.regs.height, r.stats);
+  if (tracer) r.traced_commands = tracer->commands_in_window();
   return r;
 }
 
@@ -30,15 +38,17 @@ RtlResult render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memo
 
 std::ostream& operator<<(std::ostream& os, const RtlConfig& c) {
   return os << c.pipeline << "; layout " << c.mapping << ", scheduler " << c.scheduler
+            << (c.scheduler == "in-order" ? "" : " (window " +
+                    std::to_string(c.pipeline.scheduler_params.reorder_window) + ")")
             << ", refresh " << c.refresh << "; " << c.pipeline.dimm;
 }
 
 RtlConfig vizard2_baseline() { return RtlConfig{}; }
 
 RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
-                     const RtlConfig& config) {
+                     const RtlConfig& config, const trace::TraceOptions* trace) {
   RtlResult r;
-  const auto run = [&]<PrecisionProfile P>() { r = render<P>(setup, memory, config); };
+  const auto run = [&]<PrecisionProfile P>() { r = render<P>(setup, memory, config, trace); };
   if (!hls::host::dispatch_profile(setup.profile, run))
     throw Error(std::string("this precision profile is not compiled into the rtl engine (") +
                 hls::host::kCompiledProfileNames + ")");

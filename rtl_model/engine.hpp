@@ -9,6 +9,7 @@
 // and bits on every run and host.
 #pragma once
 
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 
@@ -18,6 +19,7 @@
 #include "rtl_model/layout/address_mapping.hpp"
 #include "rtl_model/pipeline/config.hpp"
 #include "rtl_model/pipeline/stats.hpp"
+#include "rtl_model/trace/pipeline_trace.hpp"
 
 namespace voxcast::rtl {
 
@@ -39,13 +41,17 @@ RtlConfig vizard2_baseline();
 struct RtlResult {
   ref::QuantImage image;
   RtlStats stats;
+  std::uint64_t traced_commands = 0;  // SDRAM commands inside the VCD window (with a trace)
 };
 
 // One frame. Throws voxcast::Error for a profile that is not compiled in, an
 // unknown policy or mapping, a volume that does not fit the DIMMs, a deadlock
 // or state left in the pipeline at the end.
+// With `trace`, the frame's FIFO handshakes and SDRAM commands inside its
+// window go to trace->out as a VCD (rtl_model/trace/pipeline_trace.hpp);
+// the cycles and pixels are the same with and without.
 RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
-                     const RtlConfig& config = {});
+                     const RtlConfig& config = {}, const trace::TraceOptions* trace = nullptr);
 
 bool rtl_supports(const PrecisionProfile& profile);
 std::string rtl_supported_profiles();

@@ -65,6 +65,29 @@ struct Light {
   double intensity = 1.0;
 };
 
+// [rtl]: the cycle model of the card (rtl_model/, docs/performance.md) as plain
+// names and numbers; rtl::rtl_config() (rtl_model/scene_config.hpp) turns it
+// into the model's RtlConfig. The defaults are the VIZARD II baseline. The
+// accepted names are rtl_choices() (scene_toml.hpp); tests/rtl checks them
+// against the model's registries.
+struct RtlDesc {
+  std::string scheduler = "in-order";  // row-activate scheduler (rtl_model/sched/)
+  int reorder_window = 8;              // fr-fcfs: requests considered, oldest first
+  int starvation_limit = 64;           // fr-fcfs: hits that may bypass the oldest request
+  std::string refresh = "eager";       // refresh policy
+  int refresh_postpone = 0;            // REFs that may be postponed (DimmConfig)
+  std::string sdram = "pc100-cl2";     // timing preset (rtl_model/sdram/timing.hpp)
+  std::string layout = "linear";       // address mapping inside the DIMMs
+  std::array<int, 3> brick{8, 8, 8};   // bricked: words per brick edge (x, y/2, z/2)
+  std::string traversal = "scanline";  // ray order: scanline | tiles
+  int tile = 8;                        // tiles: edge in pixels
+  int ray_slots = 16;                  // rays in flight
+  int issue_burst = 0;                 // samples per ray before the next; 0 = whole ray
+  int sample_buffer = 64;              // samples between address generator and interpolation
+  int queue_depth = 8;                 // controller request queue per DIMM
+  int return_depth = 8;                // controller read-data return FIFO per DIMM
+};
+
 struct Scene {
   std::string origin = "scene";  // file path or "default scene", for messages
   std::string base_dir = ".";    // resolves relative volume paths
@@ -78,6 +101,7 @@ struct Scene {
   // [precision]: the fixed-point design's widths (docs/pipeline.md).
   std::string precision_name = "balanced";  // the preset, plus "+overrides" if any
   PrecisionProfile precision;
+  RtlDesc rtl;  // [rtl]: the cycle model's card configuration
 };
 
 const char* to_string(Projection p);

@@ -26,7 +26,10 @@ std::vector<std::string> precision_keys() {
 // docs/scenes.md documents each of these (tests/refmodel/test_scene.cpp checks).
 const std::map<std::string, std::vector<std::string>>& schema() {
   static const std::map<std::string, std::vector<std::string>> s = {
-      {"", {"volume", "classification", "camera", "render", "lights", "precision"}},
+      {"", {"volume", "classification", "camera", "render", "lights", "precision", "rtl"}},
+      {"rtl", {"scheduler", "reorder_window", "starvation_limit", "refresh", "refresh_postpone",
+               "sdram", "layout", "brick", "traversal", "tile", "ray_slots", "issue_burst",
+               "sample_buffer", "queue_depth", "return_depth"}},
       {"precision", precision_keys()},
       {"volume", {"source", "dims", "type", "spacing", "endian", "crop", "gradient"}},
       {"volume.crop", {"lo", "hi"}},
@@ -461,7 +464,49 @@ void read_precision(const TableReader& r, Scene& s) {
   }
 }
 
+bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+void read_rtl(const TableReader& r, RtlDesc& d) {
+  d.scheduler = r.string("scheduler", d.scheduler, rtl_choices("scheduler"));
+  d.reorder_window = r.integer("reorder_window", d.reorder_window, 1, 64);
+  d.starvation_limit = r.integer("starvation_limit", d.starvation_limit, 0, 1 << 20);
+  d.refresh = r.string("refresh", d.refresh, rtl_choices("refresh"));
+  // (2 + postpone) * tREFI must stay below tRAS(max) (sdram/refresh.hpp).
+  d.refresh_postpone = r.integer("refresh_postpone", d.refresh_postpone, 0, 5);
+  d.sdram = r.string("sdram", d.sdram, rtl_choices("sdram"));
+  d.layout = r.string("layout", d.layout, rtl_choices("layout"));
+  if (r.has("brick")) {
+    d.brick = r.int3("brick", 1, 1024);
+    for (int v : d.brick)
+      if (!is_power_of_two(v)) r.fail("brick", "edges must be powers of two");
+  }
+  d.traversal = r.string("traversal", d.traversal, rtl_choices("traversal"));
+  d.tile = r.integer("tile", d.tile, 1, 8192);
+  d.ray_slots = r.integer("ray_slots", d.ray_slots, 1, 1024);
+  d.issue_burst = r.integer("issue_burst", d.issue_burst, 0, 1 << 20);
+  d.sample_buffer = r.integer("sample_buffer", d.sample_buffer, 1, 4096);
+  d.queue_depth = r.integer("queue_depth", d.queue_depth, 1, 64);
+  d.return_depth = r.integer("return_depth", d.return_depth, 1, 64);
+  if (d.reorder_window > d.queue_depth)
+    r.fail("reorder_window", "= " + std::to_string(d.reorder_window) +
+                                 " exceeds rtl.queue_depth = " + std::to_string(d.queue_depth) +
+                                 " (the scheduler sees only the queue)");
+}
+
 }  // namespace
+
+const std::vector<std::string>& rtl_choices(const std::string& key) {
+  static const std::map<std::string, std::vector<std::string>> choices = {
+      {"scheduler", {"in-order", "fr-fcfs", "lookahead"}},
+      {"refresh", {"eager"}},
+      {"sdram", {"pc100-cl2", "pc100-cl3"}},
+      {"layout", {"linear", "bricked", "morton"}},
+      {"traversal", {"scanline", "tiles"}},
+  };
+  static const std::vector<std::string> none;
+  const auto it = choices.find(key);
+  return it == choices.end() ? none : it->second;
+}
 
 Scene parse_scene(const std::string& toml_text, const std::string& origin,
                   const std::string& base_dir, const Overrides& overrides) {
@@ -488,6 +533,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   read_render(top.table("render"), s.render);
   read_lights(top, s.lights);
   read_precision(top.table("precision"), s);
+  read_rtl(top.table("rtl"), s.rtl);
   if (!top.has("lights")) s.lights = {Light{}};  // one headlight of intensity 1
   return s;
 }
@@ -574,9 +620,26 @@ std::string scene_to_toml(const Scene& s) {
   const PrecisionProfile base = preset_profile(preset);
   for (const ProfileField& f : profile_fields())
     if (s.precision.*f.member != base.*f.member) precision.insert(f.name, s.precision.*f.member);
+  const RtlDesc& d = s.rtl;
+  const toml::table rtl{{"scheduler", d.scheduler},
+                        {"reorder_window", d.reorder_window},
+                        {"starvation_limit", d.starvation_limit},
+                        {"refresh", d.refresh},
+                        {"refresh_postpone", d.refresh_postpone},
+                        {"sdram", d.sdram},
+                        {"layout", d.layout},
+                        {"brick", to_array(d.brick)},
+                        {"traversal", d.traversal},
+                        {"tile", d.tile},
+                        {"ray_slots", d.ray_slots},
+                        {"issue_burst", d.issue_burst},
+                        {"sample_buffer", d.sample_buffer},
+                        {"queue_depth", d.queue_depth},
+                        {"return_depth", d.return_depth}};
   const toml::table root{{"volume", volume}, {"classification", classification},
                          {"camera", camera}, {"render", render},
-                         {"lights", lights}, {"precision", precision}};
+                         {"lights", lights}, {"precision", precision},
+                         {"rtl", rtl}};
   std::ostringstream os;
   os << root << "\n";
   return os.str();

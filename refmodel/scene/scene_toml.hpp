@@ -29,6 +29,11 @@ Scene default_scene(const Overrides& overrides = {});
 // volume paths are made absolute), for reproducers and reports.
 std::string scene_to_toml(const Scene& scene);
 
+// The names [rtl]'s string keys accept ("scheduler", "refresh", "sdram",
+// "layout", "traversal"); empty for any other key. The cycle model's
+// registries must know exactly these (tests/rtl checks).
+const std::vector<std::string>& rtl_choices(const std::string& key);
+
 // Every key the parser accepts, dotted ("render.oversampling",
 // "lights[].intensity"); docs/scenes.md must document each one (a test checks).
 std::vector<std::string> known_scene_keys();

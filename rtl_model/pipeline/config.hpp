@@ -72,6 +72,7 @@ struct PipelineConfig {
   UnitLatencies latency;
   sdram::DimmConfig dimm;                // each of the four DIMMs
   sdram::ControllerConfig controller;    // each DIMM's controller
+  sdram::SchedulerParams scheduler_params;  // reorder window, starvation limit
 };
 
 std::ostream& operator<<(std::ostream& os, const PipelineConfig& c);

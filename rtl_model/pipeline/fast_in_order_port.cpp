@@ -137,6 +137,7 @@ void FastInOrderPort::issue(Command cmd, std::uint32_t bank, std::uint32_t row, 
   last_command_ = now;
   ++ds_.commands;
   ++cs_.command_cycles;
+  if (observer_) observer_->on_command(cmd, sdram::Address{bank, row, 0}, now);
 }
 
 // ---- One cycle: Controller::tick -------------------------------------------------------------

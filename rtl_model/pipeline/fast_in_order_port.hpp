@@ -40,6 +40,7 @@ class FastInOrderPort final : public MemoryPort {
   const sim::Fifo<sdram::Completion>& completions() const override { return completions_; }
   void popped(sim::Cycle now) override;
   sim::Cycle wake() const override { return wake_; }
+  void set_observer(sdram::CommandObserver* o) override { observer_ = o; }
 
   std::size_t pending() const override { return pending_count_; }
   std::size_t in_flight() const override { return flight_count_; }
@@ -94,6 +95,7 @@ class FastInOrderPort final : public MemoryPort {
   sim::Fifo<sdram::Completion> completions_;
   sdram::ControllerStats cs_;
   sdram::DimmStats ds_;
+  sdram::CommandObserver* observer_ = nullptr;
 };
 
 }  // namespace voxcast::rtl::pipeline

@@ -10,9 +10,10 @@ std::unique_ptr<MemoryPort> make_memory_port(MemoryModel model, const std::strin
                                              const std::string& refresh,
                                              const sdram::DimmConfig& dimm,
                                              const sdram::ControllerConfig& controller,
-                                             bool skip_idle_ticks) {
+                                             bool skip_idle_ticks,
+                                             const sdram::SchedulerParams& params) {
   // Both names are checked even when the fast port is used.
-  auto s = sched::make_scheduler(scheduler);
+  auto s = sched::make_scheduler(scheduler, params);
   auto r = sched::make_refresh_policy(refresh);
   const bool in_order_eager = scheduler == "in-order" && refresh == "eager";
   if (model == MemoryModel::kAuto && in_order_eager)

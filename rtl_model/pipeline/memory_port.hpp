@@ -41,6 +41,8 @@ class MemoryPort {
   virtual const sim::Fifo<sdram::Completion>& completions() const = 0;
   virtual void popped(sim::Cycle now) = 0;
   virtual sim::Cycle wake() const = 0;
+  // Tells `o` of every command the port puts on the DIMM's bus (a trace).
+  virtual void set_observer(sdram::CommandObserver* o) = 0;
 
   virtual std::size_t pending() const = 0;
   virtual std::size_t in_flight() const = 0;
@@ -64,6 +66,7 @@ std::unique_ptr<MemoryPort> make_memory_port(MemoryModel model, const std::strin
                                              const std::string& refresh,
                                              const sdram::DimmConfig& dimm,
                                              const sdram::ControllerConfig& controller,
-                                             bool skip_idle_ticks);
+                                             bool skip_idle_ticks,
+                                             const sdram::SchedulerParams& params = {});
 
 }  // namespace voxcast::rtl::pipeline

@@ -38,6 +38,7 @@
 #include <array>
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -56,6 +57,7 @@
 #include "rtl_model/pipeline/stats.hpp"
 #include "rtl_model/sdram/controller.hpp"
 #include "rtl_model/sim/fifo.hpp"
+#include "rtl_model/trace/pipeline_trace.hpp"
 
 namespace voxcast::rtl::pipeline {
 
@@ -92,8 +94,34 @@ class RayPipeline {
     for (int d = 0; d < layout::kDimms; ++d) {
       req_.emplace_back("dimm" + std::to_string(d) + ".request", depth(config.latency.address));
       ports_.push_back(make_memory_port(config.memory_model, scheduler, refresh, config.dimm,
-                                        config.controller, config.fast_forward));
+                                        config.controller, config.fast_forward,
+                                        config.scheduler_params));
     }
+  }
+
+  // Records the frame into `t` (rtl_model/trace/pipeline_trace.hpp); call
+  // before run(). Without it, tracing costs a null test per cycle.
+  void attach_trace(trace::PipelineTrace& t) {
+    trace_ = &t;
+    traced_.clear();
+    auto add = [&](const std::string& scope, const std::string& name, const auto& fifo) {
+      traced_.push_back({t.add_fifo(scope, name), [&fifo] { return fifo.valid(); },
+                         [&fifo] { return fifo.ready(); }});
+    };
+    add("pipeline", "ray_free", free_);
+    add("pipeline", "ray_issue", issue_q_);
+    add("pipeline", "setup_miss", miss_);
+    add("pipeline", "interpolation_out", interp_);
+    add("pipeline", "classification_out", class_);
+    add("pipeline", "shading_out", shade_);
+    add("pipeline", "output", out_);
+    for (std::size_t d = 0; d < ports_.size(); ++d) {
+      const std::string scope = "dimm" + std::to_string(d);
+      add(scope, "request", req_[d]);
+      add(scope, "completions", ports_[d]->completions());
+      ports_[d]->set_observer(t.dimm(static_cast<int>(d)));
+    }
+    t.begin();
   }
 
   // Runs one frame of width x height pixels. Throws voxcast::Error on a
@@ -115,6 +143,7 @@ class RayPipeline {
       const std::uint64_t commands_before = config_.fast_forward ? commands() : 0;
       const StallStats stalls_before = stats_.stalls;
       cycle(now);
+      if (trace_) trace_fifos(now);
       ++stats_.evaluated_cycles;
       // Progress: a FIFO moved or a controller issued or retired (checked
       // every 256 evaluated cycles).
@@ -144,6 +173,10 @@ class RayPipeline {
       now = next;
     }
     stats_.cycles = now;
+    if (trace_) {
+      trace_->finish(now);
+      for (auto& p : ports_) p->set_observer(nullptr);
+    }
     expect_drained();
     collect();
     stats = stats_;
@@ -643,6 +676,12 @@ class RayPipeline {
     add(out_);
   }
 
+  // The FIFOs' handshakes at the end of the cycle. Cycles the fast-forward
+  // skips repeat the last evaluated one (nothing moved), so the values hold.
+  void trace_fifos(Cycle now) {
+    for (const TracedFifo& f : traced_) trace_->fifo(f.index, f.valid(), f.ready(), now);
+  }
+
   // ---- Members --------------------------------------------------------------------------------
   const hls::FrameState<P>& f_;
   PipelineConfig config_;
@@ -674,6 +713,12 @@ class RayPipeline {
   sim::Fifo<Shaded> shade_;
   sim::Fifo<Pixel> out_;
   RtlStats stats_;
+  struct TracedFifo {
+    int index;
+    std::function<bool()> valid, ready;
+  };
+  trace::PipelineTrace* trace_ = nullptr;
+  std::vector<TracedFifo> traced_;
 };
 
 }  // namespace voxcast::rtl::pipeline

@@ -54,6 +54,7 @@ class ReferencePort final : public MemoryPort {
 
   // The first cycle at which tick() must run (kNever-free: a cycle >= 0).
   sim::Cycle wake() const override { return predictable_ ? wake_ : 0; }
+  void set_observer(sdram::CommandObserver* o) override { c_->set_observer(o); }
 
   void push(const sdram::Request& r) override {
     c_->push(r);

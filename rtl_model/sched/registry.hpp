@@ -10,8 +10,11 @@
 
 namespace voxcast::rtl::sched {
 
-// "in-order" (InOrderOpenPage). Throws voxcast::Error naming the known ones.
-std::unique_ptr<sdram::CommandScheduler> make_scheduler(const std::string& name);
+// "in-order" (InOrderOpenPage), "fr-fcfs" (FrFcfs), "lookahead"
+// (LookAheadActivation). Throws voxcast::Error naming the known ones, or for
+// parameters out of range.
+std::unique_ptr<sdram::CommandScheduler> make_scheduler(const std::string& name,
+                                                        const sdram::SchedulerParams& params = {});
 std::vector<std::string> scheduler_names();
 
 // "eager" (EagerRefresh). Throws voxcast::Error naming the known ones.

@@ -104,6 +104,7 @@ class Controller {
   const CommandScheduler& scheduler() const { return *scheduler_; }
   const RefreshPolicy& refresh_policy() const { return *refresh_; }
   const ControllerStats& stats() const { return stats_; }
+  void set_observer(CommandObserver* o) { dimm_.set_observer(o); }
 
  private:
   void retire(Cycle now);

@@ -302,6 +302,7 @@ Issued Dimm::issue(Command cmd, const Address& a, Cycle now) {
     issued.data = DataWindow{now, now + timing_.BL - 1};
   }
   apply(cmd, a, now);
+  if (observer_) observer_->on_command(cmd, a, now);
   return issued;
 }
 

@@ -29,6 +29,7 @@
 
 #include "rtl_model/sdram/command.hpp"
 #include "rtl_model/sdram/geometry.hpp"
+#include "rtl_model/sdram/observer.hpp"
 #include "rtl_model/sdram/refresh.hpp"
 #include "rtl_model/sdram/timing.hpp"
 #include "rtl_model/sim/clock.hpp"
@@ -131,6 +132,8 @@ class Dimm {
   std::uint32_t bank_count() const { return config_.geometry.banks; }
   bool all_banks_idle() const;
   Cycle last_command_cycle() const { return last_command_; }
+  // Told of every accepted command (a trace); nullptr: none.
+  void set_observer(CommandObserver* o) { observer_ = o; }
 
   // Timing only (see the contract). `bank` is ignored for PREA and REF.
   Cycle earliest(Command cmd, std::uint32_t bank, Cycle now) const {
@@ -170,6 +173,7 @@ class Dimm {
   std::array<Cycle, kCommandCount> last_by_rank_;
   Cycle last_command_ = kNever;
   DimmStats stats_;
+  CommandObserver* observer_ = nullptr;
 };
 
 // "RD to bank 2 row 7 col 12", "PREA", ...

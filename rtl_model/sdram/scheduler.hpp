@@ -55,6 +55,13 @@ struct Decision {
 
 std::ostream& operator<<(std::ostream& os, const Decision& d);
 
+// The tunables of the policies that look past the oldest request
+// (sched/registry.hpp passes them; the in-order policy ignores them).
+struct SchedulerParams {
+  int reorder_window = 8;     // pending requests considered, oldest first (>= 1)
+  int starvation_limit = 64;  // FR-FCFS: commands for younger requests while the oldest waits
+};
+
 // What a scheduler sees each cycle.
 struct SchedulerView {
   std::span<const PendingRequest> pending;  // in arrival order, oldest first
@@ -84,9 +91,11 @@ struct SchedulerView {
 //   sched/in_order.hpp  in-order open page: only the oldest request, its next
 //                       command as soon as it is legal (the VIZARD II
 //                       baseline).
-// Planned: FR-FCFS within a reorder window (row hits first, then oldest:
-// Rixner et al., ISCA 2000); look-ahead activation (ACT for a later request
-// to another bank while the current row streams).
+//   sched/fr_fcfs.hpp   FR-FCFS within a reorder window: row hits first, then
+//                       oldest (Rixner et al., ISCA 2000), with a bound on
+//                       how often the oldest request is bypassed.
+//   sched/lookahead.hpp in order, plus PRE/ACT for a later request to a bank
+//                       no older request uses while the current row streams.
 class CommandScheduler {
  public:
   virtual ~CommandScheduler() = default;

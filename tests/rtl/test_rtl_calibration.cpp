@@ -2,17 +2,22 @@
 // A 256^3 frame simulates in tens of seconds, so these run only on request:
 //   VOXCAST_CALIBRATION=1 ./build/release/tests/voxcast_tests_rtl --gtest_filter='RtlCalibration*'
 // (VOXCAST_CALIBRATION=name runs one point; VOXCAST_CALIBRATION_LAYOUT=
-// bricked|morton and VOXCAST_CALIBRATION_TRAVERSAL=tiles change the baseline).
+// bricked|morton and VOXCAST_CALIBRATION_TRAVERSAL=tiles change the baseline;
+// VOXCAST_CALIBRATION_RTL="scheduler=lookahead layout=bricked traversal=tiles"
+// sets any keys of the scene's [rtl] table, docs/scenes.md, over the baseline).
 // The figures are printed and written as test properties
 // (--gtest_output=xml:calibration.xml).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include "rtl_model/bench/calibration.hpp"
 #include "rtl_model/pci/pci_bus.hpp"
+#include "rtl_model/scene_config.hpp"
+#include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {
 namespace {
@@ -23,6 +28,12 @@ TEST(RtlCalibration, Vizard2Frames) {
     GTEST_SKIP() << "set VOXCAST_CALIBRATION=1 (or a point's name) to run the 256^3 calibration";
   const std::string only = env;
   rtl::RtlConfig config = rtl::vizard2_baseline();
+  if (const char* keys = std::getenv("VOXCAST_CALIBRATION_RTL")) {
+    ref::Overrides sets;
+    std::istringstream in(keys);
+    for (std::string kv; in >> kv;) sets.push_back("rtl." + kv);
+    config = rtl::rtl_config(ref::default_scene(sets).rtl);
+  }
   if (const char* layout = std::getenv("VOXCAST_CALIBRATION_LAYOUT")) config.mapping.name = layout;
   if (const char* t = std::getenv("VOXCAST_CALIBRATION_TRAVERSAL"))
     config.pipeline.traversal = rtl::pipeline::parse_traversal(t);

@@ -139,6 +139,29 @@ TEST(RtlEngine, EveryOrganisationGivesTheSameImage) {
        }},
       {"slow setup", [](rtl::RtlConfig& c) { c.pipeline.latency.ray_setup_interval = 7; }},
       {"PC100 CL3", [](rtl::RtlConfig& c) { c.pipeline.dimm.timing = rtl::sdram::presets::pc100_cl3(); }},
+      // The schedulers reorder commands and completions, never pixels.
+      {"fr-fcfs", [](rtl::RtlConfig& c) { c.scheduler = "fr-fcfs"; }},
+      {"fr-fcfs window 2, limit 1",
+       [](rtl::RtlConfig& c) {
+         c.scheduler = "fr-fcfs";
+         c.pipeline.scheduler_params = {.reorder_window = 2, .starvation_limit = 1};
+       }},
+      {"lookahead", [](rtl::RtlConfig& c) { c.scheduler = "lookahead"; }},
+      {"lookahead, bricked, tiles",
+       [](rtl::RtlConfig& c) {
+         c.scheduler = "lookahead";
+         c.mapping.name = "bricked";
+         c.pipeline.traversal = rtl::pipeline::Traversal::kTiles;
+       }},
+      {"fr-fcfs, morton, tiny buffers",
+       [](rtl::RtlConfig& c) {
+         c.scheduler = "fr-fcfs";
+         c.mapping.name = "morton";
+         c.pipeline.sample_buffer = 2;
+         c.pipeline.controller.queue_depth = 3;
+         c.pipeline.controller.return_depth = 1;
+         c.pipeline.scheduler_params.reorder_window = 3;
+       }},
   };
   for (const Variant& v : variants) {
     rtl::RtlConfig c = rtl::vizard2_baseline();

@@ -1,0 +1,59 @@
+#include "rtl_model/scene_config.hpp"
+
+#include <algorithm>
+
+#include "refmodel/error.hpp"
+#include "rtl_model/sched/registry.hpp"
+
+namespace voxcast::rtl {
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+const std::string& known(const char* key, const std::string& value,
+                         const std::vector<std::string>& names) {
+  if (std::find(names.begin(), names.end(), value) == names.end())
+    throw Error(std::string("rtl.") + key + " = \"" + value + "\" is not known (known: " +
+                join(names) + ")");
+  return value;
+}
+
+// The SDRAM grades the card can run at its 100 MHz clock (sdram/timing.hpp).
+sdram::TimingNs sdram_preset(const std::string& name) {
+  known("sdram", name, {"pc100-cl2", "pc100-cl3"});
+  return name == "pc100-cl2" ? sdram::presets::pc100_cl2() : sdram::presets::pc100_cl3();
+}
+
+}  // namespace
+
+RtlConfig rtl_config(const ref::RtlDesc& d) {
+  RtlConfig c = vizard2_baseline();
+  c.scheduler = known("scheduler", d.scheduler, sched::scheduler_names());
+  c.refresh = known("refresh", d.refresh, sched::refresh_policy_names());
+  c.mapping.name = known("layout", d.layout, layout::mapping_names());
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (d.brick[i] < 1) throw Error("rtl.brick: edges must be at least 1");
+    c.mapping.brick[i] = static_cast<std::uint32_t>(d.brick[i]);
+  }
+  pipeline::PipelineConfig& p = c.pipeline;
+  p.traversal = pipeline::parse_traversal(known("traversal", d.traversal, {"scanline", "tiles"}));
+  p.tile = d.tile;
+  p.ray_slots = d.ray_slots;
+  p.issue_burst = d.issue_burst;
+  p.sample_buffer = d.sample_buffer;
+  if (d.queue_depth < 1 || d.return_depth < 1)
+    throw Error("rtl.queue_depth and rtl.return_depth must be at least 1");
+  p.controller.queue_depth = static_cast<std::size_t>(d.queue_depth);
+  p.controller.return_depth = static_cast<std::size_t>(d.return_depth);
+  p.scheduler_params.reorder_window = d.reorder_window;
+  p.scheduler_params.starvation_limit = d.starvation_limit;
+  p.dimm.timing = sdram_preset(d.sdram);
+  p.dimm.refresh_postpone_limit = d.refresh_postpone;
+  return c;
+}
+
+}  // namespace voxcast::rtl
