@@ -153,7 +153,11 @@ TEST(Constraints, SdramClockDrivesConstraintsAndModel) {
     replace("tCK_min_ns = 10.0", std::string("tCK_min_ns = ") + c.tck_min);
     replace("cas_latency = 2", std::string("cas_latency = ") + c.cl);
     const Board b = rtl::board::parse_board(text, "changed.toml");
-    const ParsedClocks p = parse_clocks(cosim::generate_constraints(b, ConstraintFormat::kXdc));
+    const std::string xdc = cosim::generate_constraints(b, ConstraintFormat::kXdc);
+    const ParsedClocks p = parse_clocks(xdc);
+    // The constraints' comment states the cycles the model uses.
+    EXPECT_NE(xdc.find("tRCD 20 ns = " + std::to_string(c.tRCD) + ","), std::string::npos);
+    EXPECT_NE(xdc.find("tRC 70 ns = " + std::to_string(c.tRC) + ","), std::string::npos);
     EXPECT_DOUBLE_EQ(p.period.at("sdram"), c.ns);
     EXPECT_DOUBLE_EQ(resolved_period(p, b, "core"), c.ns);
     const auto model = rtl::rtl_config_for_board(b);
