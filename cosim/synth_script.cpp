@@ -106,7 +106,7 @@ std::vector<SynthScript> vitis_scripts(const ref::Scene& scene, const std::strin
     for (const std::string& h : top.headers)
       os << "add_files [file join $voxcast_root " << h << "] -cflags "
          << tcl_word(synth_cflags(top, root_str)) << "\n";
-    os << "open_solution -reset " << board.name << " -flow_target vivado\n"
+    os << "open_solution -reset -flow_target vivado " << board.name << "\n"
        << "set_part " << tcl_word(board.fpga.tool_part) << "\n"
        << "create_clock -period " << ns3(core.period_ns()) << " -name " << core.name << "\n"
        << "csynth_design\n"

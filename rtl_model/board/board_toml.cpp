@@ -407,8 +407,6 @@ Host read_host(const Reader& r) {
   return h;
 }
 
-std::string file_label(const std::string& origin) { return origin; }
-
 }  // namespace
 
 const Clock& Board::clock(const std::string& n) const {
@@ -425,7 +423,7 @@ std::ostream& operator<<(std::ostream& os, const Board& b) {
 }
 
 Board parse_board(const std::string& text, const std::string& origin) {
-  const std::string file = file_label(origin);
+  const std::string& file = origin;
   toml::table root;
   try {
     root = toml::parse(text, origin);

@@ -27,31 +27,68 @@ std::string read(const fs::path& p) {
 
 // Runs `script` under tclsh with every Vitis HLS command of the script a proc
 // that appends "command arg arg ..." to a log; returns the log's lines.
-std::vector<std::string> run_with_stubs(const fs::path& script) {
+std::vector<std::string> run_with_stubs(const fs::path& script, bool expect_ok = true) {
   const fs::path dir = script.parent_path();
   const fs::path log = dir / "calls.log";
   const fs::path driver = dir / "driver.tcl";
   std::ofstream d(driver);
+  // Each stub checks its arguments against the command's synopsis (Vitis HLS
+  // user guide UG1399, "Tcl Commands"): {flags taking no value} {options
+  // taking a value} min max positional arguments, then records the call.
   d << "set log [open {" << log.string() << "} w]\n"
-    << "proc record {cmd argv} {\n"
-    << "  global log\n"
-    << "  set words [list $cmd]\n"
-    << "  foreach a $argv { lappend words \"{$a}\" }\n"
-    << "  puts $log [join $words { }]\n"
-    << "}\n"
-    << "foreach cmd {open_project set_top add_files open_solution set_part create_clock "
-       "csynth_design export_design} {\n"
-    << "  proc $cmd {args} \"record $cmd \\$args\"\n"
-    << "}\n"
-    << "rename exit tcl_exit\n"
-    << "proc exit {args} { global log; puts $log exit; close $log; tcl_exit 0 }\n"
+    << R"tcl(
+proc stub {cmd flags valued minpos maxpos argv} {
+  global log
+  set pos 0
+  for {set i 0} {$i < [llength $argv]} {incr i} {
+    set a [lindex $argv $i]
+    if {[string index $a 0] eq "-"} {
+      if {[lsearch -exact $flags $a] >= 0} continue
+      if {[dict exists $valued $a]} {
+        incr i
+        if {$i >= [llength $argv]} { error "$cmd: $a needs a value" }
+        set allowed [dict get $valued $a]
+        if {$allowed ne "*" && [lsearch -exact $allowed [lindex $argv $i]] < 0} {
+          error "$cmd: $a [lindex $argv $i] is not one of $allowed"
+        }
+        continue
+      }
+      error "$cmd: unknown option $a"
+    }
+    incr pos
+  }
+  if {$pos < $minpos || $pos > $maxpos} { error "$cmd: $pos positional arguments" }
+  set words [list $cmd]
+  foreach a $argv { lappend words "{$a}" }
+  puts $log [join $words { }]
+}
+proc open_project {args} { stub open_project {-reset -upgrade} {} 1 1 $args }
+proc set_top {args} { stub set_top {} {} 1 1 $args }
+proc add_files {args} { stub add_files {-tb -blackbox} {-cflags * -csimflags *} 1 1000 $args }
+proc open_solution {args} { stub open_solution {-reset} {-flow_target {vitis vivado}} 1 1 $args }
+proc set_part {args} { stub set_part {} {} 1 1 $args }
+proc create_clock {args} { stub create_clock {} {-period * -name *} 0 0 $args }
+proc csynth_design {args} { stub csynth_design {} {} 0 0 $args }
+proc export_design {args} {
+  stub export_design {} {-format {ip_catalog xo syn_dcp sysgen} -rtl {verilog vhdl} -output *} 0 0 $args
+}
+rename exit tcl_exit
+# tclsh itself calls exit 1 when the script fails: keep its code.
+proc exit {{code 0}} { global log; puts $log exit; close $log; tcl_exit $code }
+)tcl"
     << "source {" << script.string() << "}\n";
   d.close();
   const std::string cmd =
       "tclsh '" + driver.string() + "' > '" + (dir / "tclsh.out").string() + "' 2>&1";
   const int rc = std::system(cmd.c_str());
-  EXPECT_EQ(rc, 0) << "tclsh failed (is the tcl package installed? .ci/deps.sh): "
-                   << read(dir / "tclsh.out");
+  if (expect_ok) {
+    EXPECT_EQ(rc, 0) << "tclsh failed (is the tcl package installed? .ci/deps.sh): "
+                     << read(dir / "tclsh.out");
+  } else {
+    EXPECT_NE(rc, 0) << "the stubs accepted " << read(script);
+    EXPECT_NE(read(dir / "tclsh.out").find("while executing"), std::string::npos)
+        << "tclsh itself must run: " << read(dir / "tclsh.out");
+  }
   std::vector<std::string> lines;
   std::istringstream in(read(log));
   for (std::string l; std::getline(in, l);) lines.push_back(l);
@@ -148,6 +185,22 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
           "set_part",     "create_clock", "csynth_design", "export_design", "exit"};
       EXPECT_EQ(order, want);
     }
+  }
+}
+
+// The stubs are a real check: what the synopsis does not allow fails the run.
+TEST_F(SynthScript, StubsRejectWhatVitisWouldReject) {
+  fs::create_directories(dir);
+  const std::vector<std::string> bad = {"open_solution -flow_target fpga s\n",
+                                        "open_project -reset\n",
+                                        "create_clock -period\n",
+                                        "set_part a b\n",
+                                        "export_design -format bitstream\n",
+                                        "add_files x.cpp -cflag -O2\n",
+                                        "config_nonexistent\n"};
+  for (const std::string& line : bad) {
+    std::ofstream(dir / "bad.tcl") << line;
+    (void)run_with_stubs(dir / "bad.tcl", false);
   }
 }
 
