@@ -7,11 +7,14 @@
 
 #include "cosim/commands.hpp"
 #include "cosim/bench.hpp"
+#include "cosim/constraints.hpp"
+#include "cosim/synth_script.hpp"
 #include "cosim/cosim.hpp"
 #include "cosim/flythrough.hpp"
 #include "cosim/regress.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
+#include "rtl_model/board/board.hpp"
 
 namespace {
 
@@ -111,6 +114,34 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   add_set_option(*demo, demo_sets);
 
+  // constraints BOARD --format xdc|sdc --out FILE   (or --golden DIR [--bless])
+  std::string constraints_board, constraints_format = "xdc", constraints_out, constraints_golden;
+  bool constraints_bless = false;
+  CLI::App* constraints = app.add_subcommand(
+      "constraints", "Write the timing constraints (Vivado XDC or SDC) of a board description");
+  constraints->add_option("board", constraints_board,
+                          "Shipped board name (vizard2_pci, alveo_u250) or a board .toml");
+  constraints->add_option("--format", constraints_format, "xdc or sdc")->capture_default_str();
+  constraints->add_option("--out", constraints_out, "Output file");
+  constraints->add_option("--golden", constraints_golden,
+                          "Compare every shipped board's constraints with the golden files here");
+  constraints->add_flag("--bless", constraints_bless, "With --golden: rewrite the golden files");
+
+  // synth-script SCENE --board BOARD --tool vitis --out DIR
+  std::string synth_scene, synth_board = "vizard2_pci", synth_tool = "vitis", synth_out,
+                           synth_root = voxcast::cosim::default_source_root();
+  Overrides synth_sets;
+  CLI::App* synth = app.add_subcommand(
+      "synth-script", "Write a vendor HLS script per top-level kernel for a scene and a board");
+  synth->add_option("scene", synth_scene, "Scene file (TOML): its precision profile")->required();
+  synth->add_option("--board", synth_board, "Shipped board name or a board .toml")
+      ->capture_default_str();
+  synth->add_option("--tool", synth_tool, "vitis (Vitis HLS Tcl)")->capture_default_str();
+  synth->add_option("--out", synth_out, "Output folder")->required();
+  synth->add_option("--source-dir", synth_root, "The voxcast source tree the scripts name")
+      ->capture_default_str();
+  add_set_option(*synth, synth_sets);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -149,6 +180,29 @@ int main(int argc, char** argv) {
         std::cerr << "voxcast: regress: " << failed << " case(s) failed\n";
         return 4;
       }
+    } else if (*constraints) {
+      if (!constraints_golden.empty()) {
+        const int differ = voxcast::cosim::check_constraint_goldens(constraints_golden,
+                                                                    constraints_bless, std::cout);
+        if (differ > 0) {
+          std::cerr << "voxcast: constraints: " << differ << " golden file(s) differ\n";
+          return 4;
+        }
+      } else {
+        if (constraints_board.empty() || constraints_out.empty())
+          throw voxcast::Error("constraints: give BOARD and --out FILE (or --golden DIR)");
+        const auto board = voxcast::rtl::board::load_board(constraints_board);
+        const auto format = voxcast::cosim::parse_constraint_format(constraints_format);
+        voxcast::cosim::write_text_file(constraints_out,
+                                        voxcast::cosim::generate_constraints(board, format));
+        std::cout << "wrote " << constraints_out << " (" << board << ")\n";
+      }
+    } else if (*synth) {
+      const auto scene = voxcast::ref::load_scene_file(synth_scene, synth_sets);
+      const auto board = voxcast::rtl::board::load_board(synth_board);
+      for (const auto& path : voxcast::cosim::write_synth_scripts(scene, synth_scene, board,
+                                                                  synth_tool, synth_out, synth_root))
+        std::cout << "wrote " << path << "\n";
     } else if (*demo) {
       const auto scene = voxcast::ref::default_scene(demo_sets);
       voxcast::cosim::RenderOptions opts{{demo_out + ".png", demo_out + ".exr"}, demo_out + ".json"};

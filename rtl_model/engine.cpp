@@ -6,6 +6,7 @@
 
 #include "hls/host_frame.hpp"
 #include "refmodel/error.hpp"
+#include "rtl_model/board/board_config.hpp"
 #include "rtl_model/layout/vizard2_layout.hpp"
 #include "rtl_model/pipeline/ray_pipeline.hpp"
 
@@ -43,7 +44,12 @@ std::ostream& operator<<(std::ostream& os, const RtlConfig& c) {
             << ", refresh " << c.refresh << "; " << c.pipeline.dimm;
 }
 
-RtlConfig vizard2_baseline() { return RtlConfig{}; }
+// From the shipped board description (constraints/boards/vizard2_pci.toml), the
+// one source of the card's clocks and SDRAM timing; parsed once.
+RtlConfig vizard2_baseline() {
+  static const RtlConfig c = rtl_config_for_board(board::shipped_board(kVizard2BoardName));
+  return c;
+}
 
 RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
                      const RtlConfig& config, const trace::TraceOptions* trace) {

@@ -35,7 +35,9 @@ struct RtlConfig {
 std::ostream& operator<<(std::ostream& os, const RtlConfig& c);
 
 // The VIZARD II baseline: in-order open-page controllers, eager refresh, scan-line
-// traversal, the linear layout, PC100 CL2 at 100 MHz, BL 1 (the defaults).
+// traversal, the linear layout, PC100 CL2 at 100 MHz, BL 1 (the defaults), with
+// the DIMMs' geometry, timing and clock read from the shipped board
+// constraints/boards/vizard2_pci.toml (rtl_model/board/board_config.hpp).
 RtlConfig vizard2_baseline();
 
 struct RtlResult {

@@ -1,0 +1,56 @@
+#include "rtl_model/board/board_config.hpp"
+
+#include <sstream>
+
+#include "refmodel/error.hpp"
+#include "rtl_model/layout/vizard2_layout.hpp"
+
+namespace voxcast::rtl {
+namespace {
+[[noreturn]] void cannot_model(const board::Board& b, const std::string& why) {
+  throw Error("board " + b.name + " (" + b.origin +
+              "): the cycle model cannot simulate it: " + why);
+}
+}  // namespace
+
+RtlConfig rtl_config_for_board(const board::Board& b) {
+  const board::Memory& m = b.memory;
+  if (m.type != "sdr")
+    cannot_model(b, "memory.type = \"" + m.type + "\" (the Dimm model is SDR SDRAM)");
+  if (m.dimms != layout::kDimms)
+    cannot_model(b, "memory.dimms = " + std::to_string(m.dimms) +
+                        " (the VIZARD II layout interleaves the volume over " +
+                        std::to_string(layout::kDimms) + ")");
+  if (b.core().period_ps != b.memory_clock().period_ps) {
+    std::ostringstream os;
+    os << "the core clock '" << b.core_clock << "' (" << b.core().period_ns()
+       << " ns) differs from the memory clock '" << m.clock << "' (" << b.memory_clock().period_ns()
+       << " ns); the model runs the pipeline at the SDRAM clock (2001 paper §2.3)";
+    cannot_model(b, os.str());
+  }
+  RtlConfig c;
+  c.pipeline.dimm.geometry = m.geometry;
+  c.pipeline.dimm.timing = m.timing;
+  c.pipeline.dimm.clock = b.memory_clock().domain();
+  c.pipeline.dimm.burst_length = m.burst_length;
+  // Convert once here so a grade that is not rated for the clock fails with
+  // the board's name, not at the first frame.
+  try {
+    (void)sdram::to_cycles(m.timing, c.pipeline.dimm.clock, m.burst_length);
+  } catch (const Error& e) {
+    cannot_model(b, e.what());
+  }
+  return c;
+}
+
+pci::PciConfig pci_config_for_board(const board::Board& b) {
+  if (b.host.interface != "pci")
+    throw Error("board " + b.name + ": host.interface = \"" + b.host.interface +
+                "\"; the bus model is 32/64-bit parallel PCI");
+  pci::PciConfig c;
+  c.clock = b.host_clock().domain();
+  c.bus_bytes = b.host.bus_bits / 8;
+  return c;
+}
+
+}  // namespace voxcast::rtl
