@@ -467,7 +467,9 @@ Resources op_resources(const Op& op, Family f) {
       r.ffs = n * op.a;   // registered result
       break;
     case OpKind::Cmp:
-      r.luts = n * std::ceil(op.a / (lut6 ? 3.0 : 2.0));  // bit pairs per LUT on the carry chain
+      // Yosys synth_xilinx maps an a-bit a < b to 3a/4 LUT6 on the carry chain
+      // (docs/resources.md); LUT4: one bit pair per LUT.
+      r.luts = n * std::ceil(lut6 ? 0.75 * op.a : op.a / 2.0);
       r.ffs = n;
       break;
     case OpKind::Mux:
