@@ -119,7 +119,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   tune->add_option("--vary", tune_vary, "Search axis FIELD=LO..HI (repeatable; default: "
                    "docs/resources.md)");
-  tune->add_flag("!--no-prune", tune_opts.prune, "Render every point cheaper than the answer");
+  tune->add_flag("--prune", tune_opts.prune,
+                 "Skip points below per-axis floors (assumes accuracy monotone in each width; "
+                 "the answer may then not be the cheapest)");
   add_set_option(*tune, tune_sets);
 
   try {

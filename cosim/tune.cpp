@@ -44,14 +44,6 @@ std::vector<PrecisionProfile> enumerate(const PrecisionProfile& base,
   return out;
 }
 
-// q is no wider than p on every axis.
-bool no_wider(const PrecisionProfile& q, const PrecisionProfile& p,
-              const std::vector<const ProfileField*>& fields) {
-  for (const ProfileField* f : fields)
-    if (q.*f->member > p.*f->member) return false;
-  return true;
-}
-
 // The widths the kernels require of one another (the static_asserts of hls/):
 // a profile breaking one is outside the design space.
 bool kernel_constraints_hold(const PrecisionProfile& p) {
@@ -142,33 +134,80 @@ TuneResult run_tune(const ref::Scene& scene, const TuneOptions& o) {
   const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
   const ref::RenderInputs inputs = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
   const ref::Image truth = ref::render_image(inputs, scene.render.threads);
-  // Voxel memories depend on three fields only; build each once.
+  // Voxel memories depend on three fields only; build each once. Renders are
+  // memoised by profile (the probes below and the walk share them).
   std::map<std::tuple<int, int, int>, bittrue::VoxelMemory> memories;
-  std::vector<PrecisionProfile> misses;
-  for (TunePoint& t : r.points) {
-    if (!t.valid) continue;
-    if (o.prune && std::any_of(misses.begin(), misses.end(), [&](const PrecisionProfile& m) {
-          return no_wider(t.profile, m, fields);
-        })) {
-      ++r.pruned;
-      continue;
-    }
-    const PrecisionProfile& p = t.profile;
+  std::map<std::vector<int>, double> psnr_of;
+  auto measure = [&](const PrecisionProfile& p) {
+    std::vector<int> k;
+    for (const ProfileField& f : profile_fields()) k.push_back(p.*f.member);
+    const auto hit = psnr_of.find(k);
+    if (hit != psnr_of.end()) return hit->second;
     const auto mkey = std::make_tuple(p.value_bits, p.gradient_bits, p.gradient_frac_bits);
     auto it = memories.find(mkey);
     if (it == memories.end())
       it = memories.emplace(mkey, bittrue::make_voxel_memory(p, sv.volume, sv.gradients)).first;
     const bittrue::FrameSetup setup = bittrue::make_frame_setup(p, scene, inputs);
     const ref::QuantImage img = bittrue::bt_render_image(setup, it->second, scene.render.threads);
-    t.psnr_db = measure_accuracy(img, truth).psnr_db;
-    t.rendered = true;
+    const double psnr = measure_accuracy(img, truth).psnr_db;
     ++r.rendered;
+    psnr_of.emplace(k, psnr);
+    return psnr;
+  };
+  auto valid = [&](const PrecisionProfile& p) {
+    if (!kernel_constraints_hold(p)) return false;
+    try {
+      check_profile_fits(p, sv.volume, range.max_gradient);
+    } catch (const Error&) {
+      return false;
+    }
+    return true;
+  };
+
+  // Pruning: with accuracy monotone in every width, an axis value that misses
+  // the target with every other axis at its widest misses with any other
+  // values too. Binary search per axis for the narrowest value that meets the
+  // target with the others at their widest: every point below it is skipped.
+  std::vector<int> floor(r.axes.size());
+  for (std::size_t i = 0; i < r.axes.size(); ++i) floor[i] = r.axes[i].lo;
+  if (o.prune) {
+    PrecisionProfile widest = scene.precision;
+    for (std::size_t i = 0; i < r.axes.size(); ++i) widest.*fields[i]->member = r.axes[i].hi;
+    if (!valid(widest) || measure(widest) < o.target_psnr_db) {
+      r.pruned = r.space;  // nothing meets the target
+      return r;
+    }
+    for (std::size_t i = 0; i < r.axes.size(); ++i) {
+      int lo = r.axes[i].lo, hi = r.axes[i].hi;  // hi meets the target
+      while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        PrecisionProfile q = widest;
+        q.*fields[i]->member = mid;
+        if (valid(q) && measure(q) >= o.target_psnr_db) {
+          hi = mid;
+        } else {
+          lo = mid + 1;
+        }
+      }
+      floor[i] = lo;
+    }
+  }
+  for (TunePoint& t : r.points) {
+    if (!t.valid) continue;
+    bool below = false;
+    for (std::size_t i = 0; i < fields.size(); ++i)
+      below = below || t.profile.*fields[i]->member < floor[i];
+    if (below) {
+      ++r.pruned;
+      continue;
+    }
+    t.psnr_db = measure(t.profile);
+    t.rendered = true;
     if (t.psnr_db >= o.target_psnr_db) {
       r.found = true;
       r.best = t;
       break;
     }
-    misses.push_back(p);
   }
   return r;
 }

@@ -7,9 +7,12 @@
 // fields, each over a range; the scene's profile elsewhere) is priced by the
 // resource model, which is cheap; points are rendered in ascending cost and the
 // first that meets the target is the answer — so no cheaper point of the space
-// meets it, whatever the accuracy does. Pruning: accuracy is taken to be
-// monotone in each width, so a point no wider than a point already found to
-// miss the target is skipped unrendered (disable with prune = false).
+// meets it, whatever the accuracy does. Pruning (prune = true, a heuristic)
+// takes accuracy to be monotone in each width: a binary search per axis, the
+// other axes at their widest, finds the narrowest value that can meet the
+// target, and the points below it on any axis are skipped unrendered. Accuracy
+// is not always monotone (tests/report/test_tune.cpp meets a case), so a
+// pruned answer meets the target but may not be the cheapest.
 #pragma once
 
 #include <iosfwd>
@@ -38,7 +41,7 @@ struct TuneOptions {
   double target_psnr_db = 40.0;
   std::string part = "xc7a200t";
   std::vector<TuneAxis> axes;  // empty: default_tune_axes
-  bool prune = true;
+  bool prune = false;  // exact by default: accuracy is not always monotone (docs/resources.md)
 };
 
 struct TunePoint {
@@ -54,8 +57,8 @@ struct TuneResult {
   TunePoint best;
   std::vector<TuneAxis> axes;
   std::size_t space = 0;     // points in the search space
-  std::size_t rendered = 0;  // points rendered
-  std::size_t pruned = 0;    // points skipped by monotonicity
+  std::size_t rendered = 0;  // renders (walk and pruning probes)
+  std::size_t pruned = 0;    // points skipped by monotonicity (below an axis floor)
   std::vector<TunePoint> points;  // every point, ascending cost (rendered ones carry psnr)
 };
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <vector>
 
 #include "cosim/engines.hpp"
@@ -45,22 +46,30 @@ TEST(Tune, TheAnswerMeetsTheTargetAndNoCheaperPointDoes) {
   for (const auto& p : every.points) psnr.push_back(p.psnr_db);
   std::sort(psnr.begin(), psnr.end());
   // Targets across the range of what the space reaches.
+  std::size_t pruned = 0;
+  int cheapest_missed = 0;
   for (const double target : {psnr[psnr.size() / 4], psnr[psnr.size() / 2],
                               psnr[3 * psnr.size() / 4], psnr.back()}) {
-    for (const bool prune : {false, true}) {
-      const cosim::TuneResult r = cosim::run_tune(scene, {target, "xc7a200t", kAxes, prune});
-      ASSERT_TRUE(r.found) << target;
-      EXPECT_GE(r.best.psnr_db, target);
-      for (const auto& p : every.points)
-        if (p.cost < r.best.cost) {
-          EXPECT_LT(p.psnr_db, target) << "a cheaper point meets " << target << " dB (prune "
-                                       << prune << ")";
-        }
-      if (prune) {
-        EXPECT_LE(r.rendered, every.space);
+    // Exact (the default): the answer meets the target, no cheaper point does.
+    const cosim::TuneResult r = cosim::run_tune(scene, {target, "xc7a200t", kAxes, false});
+    ASSERT_TRUE(r.found) << target;
+    EXPECT_GE(r.best.psnr_db, target);
+    for (const auto& p : every.points)
+      if (p.cost < r.best.cost) {
+        EXPECT_LT(p.psnr_db, target) << "a cheaper point meets " << target << " dB";
       }
-    }
+    // Pruned: meets the target, never cheaper than the exact answer, skips points.
+    const cosim::TuneResult q = cosim::run_tune(scene, {target, "xc7a200t", kAxes, true});
+    ASSERT_TRUE(q.found) << target;
+    EXPECT_GE(q.best.psnr_db, target);
+    EXPECT_GE(q.best.cost, r.best.cost);
+    pruned += q.pruned;
+    cheapest_missed += q.best.cost > r.best.cost ? 1 : 0;
   }
+  EXPECT_GT(pruned, 0u);
+  // Accuracy is not monotone in every width on this space (why pruning is off
+  // by default): recorded in docs/resources.md.
+  std::cout << "pruning missed the cheapest point for " << cheapest_missed << " of 4 targets\n";
 }
 
 TEST(Tune, PointsAreOrderedByTheResourceModelsCost) {
