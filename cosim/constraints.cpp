@@ -284,12 +284,6 @@ std::string generate_constraints(const Board& b, ConstraintFormat f) {
   return os.str();
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  if (!f) throw Error("cannot write " + path);
-}
-
 int check_constraint_goldens(const std::string& golden_dir, bool bless, std::ostream& log) {
   namespace fs = std::filesystem;
   int differ = 0;

@@ -5,6 +5,8 @@
 // its source (docs/constraints.md).
 #pragma once
 
+#include "cosim/files.hpp"
+
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -55,8 +57,6 @@ namespace voxcast::cosim {
 // each reported on `log` with its first differing line) or, with bless,
 // rewritten (returns 0).
 // Writes text to path; throws voxcast::Error naming the path on failure.
-void write_text_file(const std::string& path, const std::string& text);
-
 int check_constraint_goldens(const std::string& golden_dir, bool bless, std::ostream& log);
 
 }  // namespace voxcast::cosim

@@ -17,6 +17,7 @@
 #include "refmodel/parallel.hpp"
 #include "refmodel/render/raycaster.hpp"
 #include "rtl_model/engine.hpp"
+#include "rtl_model/scene_config.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -125,7 +126,7 @@ FlythroughResult run_flythrough(const ref::Scene& scene, const FlythroughOptions
   check_fixed_point(scene, sv, /*hls=*/true);
   const bittrue::VoxelMemory memory =
       bittrue::make_voxel_memory(scene.precision, sv.volume, sv.gradients);
-  const rtl::RtlConfig config = rtl::vizard2_baseline();
+  const rtl::RtlConfig config = rtl::rtl_config(scene.rtl);
   const std::vector<ref::CameraPose> poses = ref::frame_poses(scene.camera, n);
 
   // Frames are independent: one simulation per worker, each single-threaded

@@ -12,6 +12,8 @@
 #include "cosim/cosim.hpp"
 #include "cosim/flythrough.hpp"
 #include "cosim/regress.hpp"
+#include "cosim/report.hpp"
+#include "cosim/tune.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 #include "rtl_model/board/board.hpp"
@@ -141,6 +143,36 @@ int main(int argc, char** argv) {
   synth->add_option("--source-dir", synth_root, "The voxcast source tree the scripts name")
       ->capture_default_str();
   add_set_option(*synth, synth_sets);
+  // report SCENE [--part NAME] [--json FILE] [--md FILE]
+  std::string report_scene, report_part = "xc7a200t", report_json_path, report_md_path;
+  Overrides report_sets;
+  CLI::App* report = app.add_subcommand(
+      "report", "Operators per unit, FPGA resources and latency of the design the scene needs");
+  report->add_option("scene", report_scene, "Scene file (TOML)")->required();
+  report->add_option("--part", report_part, "xcv1000e, xc2v3000, xc7a200t or xc7k325t")
+      ->capture_default_str();
+  report->add_option("--json", report_json_path, "Write the report as JSON here");
+  report->add_option("--md", report_md_path, "Write the report as Markdown here (default: stdout)");
+  add_set_option(*report, report_sets);
+
+  // tune SCENE --target-psnr DB
+  std::string tune_scene;
+  std::vector<std::string> tune_vary;
+  voxcast::cosim::TuneOptions tune_opts;
+  Overrides tune_sets;
+  CLI::App* tune = app.add_subcommand(
+      "tune", "Cheapest precision widths (resource model) meeting a PSNR target (bit-true engine)");
+  tune->add_option("scene", tune_scene, "Scene file (TOML)")->required();
+  tune->add_option("--target-psnr", tune_opts.target_psnr_db, "Target PSNR in dB against the "
+                   "float reference")->required();
+  tune->add_option("--part", tune_opts.part, "Part whose capacity prices the resources")
+      ->capture_default_str();
+  tune->add_option("--vary", tune_vary, "Search axis FIELD=LO..HI (repeatable; default: "
+                   "docs/resources.md)");
+  tune->add_flag("--prune", tune_opts.prune,
+                 "Skip points below per-axis floors (assumes accuracy monotone in each width; "
+                 "the answer may then not be the cheapest)");
+  add_set_option(*tune, tune_sets);
 
   try {
     app.parse(argc, argv);
@@ -203,6 +235,25 @@ int main(int argc, char** argv) {
       for (const auto& path : voxcast::cosim::write_synth_scripts(scene, synth_scene, board,
                                                                   synth_tool, synth_out, synth_root))
         std::cout << "wrote " << path << "\n";
+    } else if (*report) {
+      const auto scene = voxcast::ref::load_scene_file(report_scene, report_sets);
+      const auto r = voxcast::cosim::estimate_resources(scene,
+                                                        voxcast::cosim::find_part(report_part));
+      const std::string md = voxcast::cosim::report_markdown(r);
+      if (!report_md_path.empty()) {
+        voxcast::cosim::write_text_file(report_md_path, md);
+      } else {
+        std::cout << md;
+      }
+      if (!report_json_path.empty())
+        voxcast::cosim::write_text_file(report_json_path, voxcast::cosim::report_json(r) + "\n");
+    } else if (*tune) {
+      const auto scene = voxcast::ref::load_scene_file(tune_scene, tune_sets);
+      for (const std::string& v : tune_vary)
+        tune_opts.axes.push_back(voxcast::cosim::parse_tune_axis(v));
+      const auto r = voxcast::cosim::run_tune(scene, tune_opts);
+      voxcast::cosim::print_tune(std::cout, scene, tune_opts, r);
+      if (!r.found) return 5;
     } else if (*demo) {
       const auto scene = voxcast::ref::default_scene(demo_sets);
       voxcast::cosim::RenderOptions opts{{demo_out + ".png", demo_out + ".exr"}, demo_out + ".json"};

@@ -1,5 +1,6 @@
 #include "rtl_model/pipeline/config.hpp"
 
+#include <algorithm>
 #include <ostream>
 
 #include "refmodel/error.hpp"
@@ -35,6 +36,17 @@ std::ostream& operator<<(std::ostream& os, const UnitLatencies& l) {
             << "), address " << l.address << ", interpolation " << l.interpolation
             << ", classification " << l.classification << ", shading " << l.shading
             << ", compositing 1";
+}
+
+UnitLatencies elaborate_latencies(UnitLatencies l, const ElaboratedUnits& units) {
+  if (!units.perspective) l.ray_setup = std::max(1, l.ray_setup - kRsqrtStages);
+  if (units.mip) {
+    l.classification = 0;
+    l.shading = 0;
+  } else if (!units.shaded) {
+    l.shading = std::min(l.shading, kUnshadedShadeStages);
+  }
+  return l;
 }
 
 std::ostream& operator<<(std::ostream& os, const PipelineConfig& c) {

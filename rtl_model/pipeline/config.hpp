@@ -50,6 +50,25 @@ struct UnitLatencies {
 
 std::ostream& operator<<(std::ostream& os, const UnitLatencies& l);
 
+// The latencies of the units a frame's design contains (elaboration,
+// refmodel/scene/elaboration.hpp, docs/resources.md): a unit that is left out
+// adds no pipeline stages. MIP has no classification or shading stages; an
+// unshaded frame has no reflectance map, so its shading stage is the one
+// clock of U(colour); a parallel camera has no rsqrt unit in its ray set-up.
+// Only the fill and drain move; the image is the same bits.
+struct ElaboratedUnits {
+  bool mip = false;
+  bool shaded = true;
+  bool perspective = true;
+};
+// Stages of the rsqrt unit inside UnitLatencies::ray_setup (docs/pipeline.md
+// §1.2, one multiply or add per clock): d·d (multiply, sum) 2, leading-zero
+// count and shifts 1, seed ROM 1, two Newton steps of three products 6, d'·y 1.
+inline constexpr int kRsqrtStages = 11;
+// The unshaded shader: U(colour, shade_bits), one rounding adder, one clock.
+inline constexpr int kUnshadedShadeStages = 1;
+UnitLatencies elaborate_latencies(UnitLatencies base, const ElaboratedUnits& units);
+
 struct PipelineConfig {
   int ray_slots = 16;       // rays in flight (set up, issuing or draining)
   Traversal traversal = Traversal::kScanline;

@@ -73,7 +73,7 @@ class RayPipeline {
               const layout::AddressMapping& mapping, const PipelineConfig& config,
               const std::string& scheduler, const std::string& refresh)
       : f_(frame),
-        config_(config),
+        config_(elaborated(config, frame)),
         layout_(memory.dims),
         memory_(memory),
         mapping_(mapping),
@@ -81,10 +81,10 @@ class RayPipeline {
         shaded_(frame.mode == hls::FrameMode::Shaded),
         free_("ray.free", checked(config.ray_slots, "ray_slots")),
         issue_q_("ray.issue", static_cast<std::size_t>(config.ray_slots)),
-        miss_("setup.miss", depth(config.latency.ray_setup)),
-        interp_("interpolation.out", depth(config.latency.interpolation)),
-        class_("classification.out", depth(config.latency.classification)),
-        shade_("shading.out", depth(config.latency.shading)),
+        miss_("setup.miss", depth(config_.latency.ray_setup)),
+        interp_("interpolation.out", depth(config_.latency.interpolation)),
+        class_("classification.out", depth(config_.latency.classification)),
+        shade_("shading.out", depth(config_.latency.shading)),
         out_("output", checked(config.output_depth, "output_depth")) {
     checked(config.sample_buffer, "sample_buffer");
     checked(config.latency.ray_setup_interval, "latency.ray_setup_interval");
@@ -92,7 +92,7 @@ class RayPipeline {
     buf_.resize(static_cast<std::size_t>(config.sample_buffer));
     for (int i = 0; i < config.ray_slots; ++i) free_.push(i);
     for (int d = 0; d < layout::kDimms; ++d) {
-      req_.emplace_back("dimm" + std::to_string(d) + ".request", depth(config.latency.address));
+      req_.emplace_back("dimm" + std::to_string(d) + ".request", depth(config_.latency.address));
       ports_.push_back(make_memory_port(config.memory_model, scheduler, refresh, config.dimm,
                                         config.controller, config.fast_forward,
                                         config.scheduler_params));
@@ -122,6 +122,16 @@ class RayPipeline {
       ports_[d]->set_observer(t.dimm(static_cast<int>(d)));
     }
     t.begin();
+  }
+
+  // The configuration with the latencies of the units this frame's design
+  // contains (elaborate_latencies): MIP, unshaded and parallel frames skip the
+  // stages of the units they leave out.
+  static PipelineConfig elaborated(PipelineConfig c, const hls::FrameState<P>& frame) {
+    c.latency = elaborate_latencies(c.latency, {frame.mode == hls::FrameMode::Mip,
+                                                frame.mode == hls::FrameMode::Shaded,
+                                                frame.geometry.perspective});
+    return c;
   }
 
   // Runs one frame of width x height pixels. Throws voxcast::Error on a
