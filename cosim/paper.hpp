@@ -32,10 +32,13 @@ inline const std::vector<std::string> kTransferFunctions = {"binary", "ramp"};
 inline const std::vector<double> kOversampling = {1.0, 2.0, 4.0, 8.0};
 
 // "Satisfactory image quality" (section 4), made measurable: the float
-// reference at that oversampling, rounded to 8 bits, has at least
-// kSatisfactoryPct % of its pixels within 1 LSB of the truth — no more than
-// 1 % of the image shows a visible sampling artefact (docs/sweep.md).
-inline constexpr double kSatisfactoryPct = 99.0;
+// reference at that oversampling, rounded to 8 bits, is within kSatisfactoryPsnr
+// dB PSNR and kSatisfactorySsim SSIM of the truth (40 dB: an rms error of 2.55
+// LSB, the usual threshold for an 8-bit image to look like its original;
+// docs/sweep.md). The card's own fixed-point error is reported beside it but
+// not judged: the paper's finding is about the sampling rate.
+inline constexpr double kSatisfactoryPsnr = 40.0;
+inline constexpr double kSatisfactorySsim = 0.99;
 
 struct CellResult {
   std::string tf;
@@ -52,8 +55,9 @@ struct Vizard2Result {
   // Per transfer function, the smallest oversampling that meets the criterion
   // (nullopt: none of 1x..8x does).
   std::vector<std::optional<double>> satisfactory;
-  bool finding_holds = false;  // binary needs 4x (2x fails, 4x meets), ramp needs less
-  std::string finding;         // the verdict in one sentence with its numbers
+  bool finding_holds = false;     // the binary wall needs 4x: 2x fails, 4x meets the criterion
+  bool ramp_lowers_rate = false;  // the ramp meets it at a lower rate than the binary TF
+  std::string finding;            // the numbers behind both, in one paragraph
   std::vector<std::string> warnings;
   std::vector<std::string> written;
 };

@@ -97,11 +97,15 @@ void mark_front(Table& table, const Front& front) {
     Cell& cell = table.rows[i].cells[col];
     if (on[i]) {
       cell = Cell::txt(*on[i] ? "yes" : "no");
-    } else {
-      std::string what;
-      for (const Objective& o : front.objectives) what += (what.empty() ? "" : " or ") + o.column;
-      cell = Cell::na("not on any front: " + what + " not available");
+      continue;
     }
+    std::string missing;
+    for (std::size_t k = 0; k < obj.size(); ++k)
+      if (!points[i][k]) missing += (missing.empty() ? "" : " and ") + front.objectives[k].column;
+    const Cell& st = table.rows[i].cells[status];
+    cell = Cell::na(st.kind == Cell::Kind::Text && st.text == "ok"
+                        ? front.column.name + ": " + missing + " not available"
+                        : front.column.name + ": the point did not run");
   }
 }
 
