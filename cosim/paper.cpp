@@ -276,10 +276,10 @@ void write_markdown(const Vizard2Options& o, const Vizard2Result& r, const std::
      << (r.ramp_lowers_rate ? "holds" : "does not hold here") << ".** "
      << (r.ramp_lowers_rate
              ? "The ramp meets the criterion at a lower oversampling than the binary step."
-             : "The ramp's error is lower than the binary step's at 1x, but it converges more "
-               "slowly: on this 1.5-voxel wall of a segmented volume the ramp's opacity still "
-               "changes within about a voxel, and the wall stays partly transparent at low "
-               "rates, so the accumulated colour depends on where the samples fall.")
+             : "On this 1.5-voxel wall of a segmented volume the ramp's opacity still changes "
+               "within about a voxel and the wall stays partly transparent at low rates, so the "
+               "composited colour depends on where the samples fall (the paper gives neither "
+               "its ramp's width nor numbers).")
      << "\n";
   if (!r.warnings.empty()) {
     md << "\n## Warnings\n\n";

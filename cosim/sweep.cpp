@@ -364,6 +364,7 @@ SweepSummary run_sweep_merge(const std::vector<std::string>& dirs, const std::st
   for (const Front& f : pareto_fronts()) mark_front(t, f);
   std::filesystem::create_directories(out_dir);
   SweepSummary s;
+  s.merged = true;
   s.points = t.rows.size();
   s.points_total = t.rows.size();
   s.written = write_outputs(t, out_dir, plots, s.warnings);
@@ -385,9 +386,12 @@ std::vector<std::string> write_outputs(const Table& table, const std::string& di
 }
 
 void print_sweep_summary(std::ostream& os, const SweepSummary& s) {
-  os << std::fixed << std::setprecision(1) << "points   " << s.points << " of " << s.points_total
-     << " in " << s.seconds << " s (" << s.truth_renders << " truth image"
-     << (s.truth_renders == 1 ? "" : "s") << " rendered)\n";
+  os << std::fixed << std::setprecision(1);
+  if (s.merged)
+    os << "merged   " << s.points << " points in " << s.seconds << " s\n";
+  else
+    os << "points   " << s.points << " of " << s.points_total << " in " << s.seconds << " s ("
+       << s.truth_renders << " truth image" << (s.truth_renders == 1 ? "" : "s") << " rendered)\n";
   for (const std::string& w : s.warnings) std::cerr << "voxcast: warning: " << w << "\n";
   for (const std::string& w : s.written) os << "wrote    " << w << "\n";
 }

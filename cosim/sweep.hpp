@@ -57,7 +57,8 @@ const std::vector<Front>& pareto_fronts();
 struct SweepSummary {
   std::size_t points = 0;          // points this run computed
   std::size_t points_total = 0;    // points of the whole sweep
-  std::size_t truth_renders = 0;   // distinct truth images rendered
+  std::size_t truth_renders = 0;   // distinct truth images rendered (sweep; 0 for a merge)
+  bool merged = false;
   double seconds = 0.0;
   std::vector<std::string> written;
   std::vector<std::string> warnings;  // e.g. plots skipped

@@ -86,7 +86,7 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
   std::vector<std::string> plots;  // stems
   std::ostringstream gp;
   gp << "# voxcast sweep plots: gnuplot plots.gp (in this folder) redraws them.\n"
-     << "set grid\nset key bottom right\n";
+     << "set grid\nset key below\n";
 
   // PSNR against frames/s, the front as a line.
   std::vector<PlotPoint> pf;
