@@ -54,6 +54,11 @@ bool on_path(const std::string& program) {
 }
 
 int run_in(const std::string& dir, const std::vector<std::string>& argv) {
+  // Everything the child needs is made before fork: between fork and exec it
+  // calls only async-signal-safe functions (other threads may hold malloc's lock).
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
   const pid_t pid = fork();
   if (pid < 0) return -1;
   if (pid == 0) {
@@ -64,9 +69,6 @@ int run_in(const std::string& dir, const std::vector<std::string>& argv) {
       dup2(devnull, STDERR_FILENO);
     }
     if (chdir(dir.c_str()) != 0) _exit(127);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
     execvp(args[0], args.data());
     _exit(127);
   }
