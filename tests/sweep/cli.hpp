@@ -19,9 +19,10 @@ struct Command {
   std::string output;  // stdout and stderr
 };
 
-inline Command run(const std::string& args) {
+// `prefix` goes before the program, e.g. "env PATH=/nonexistent".
+inline Command run(const std::string& args, const std::string& prefix = "") {
   Command r;
-  const std::string cmd = std::string(VOXCAST_EXE) + " " + args + " 2>&1";
+  const std::string cmd = prefix + " " + std::string(VOXCAST_EXE) + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf{};

@@ -178,4 +178,21 @@ TEST(Sweep, InfeasiblePointsProgressAndPlots) {
   }
 }
 
+// Without gnuplot the results are written all the same and one warning says
+// the plots were skipped.
+TEST(Sweep, WithoutGnuplotThePlotsAreSkippedWithAWarning) {
+  const auto d = temp_dir("no_gnuplot");
+  const Command r = run("sweep " + tiny_scene() + " --set precision.profile=vizard2 " +
+                            "--vary render.oversampling=1 --out " + d.string(),
+                        "env PATH=/nonexistent");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("voxcast: warning: gnuplot is not installed (Debian: gnuplot-nox): "
+                          "plots skipped"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::exists(d / "results.csv"));
+  EXPECT_TRUE(fs::exists(d / "plots.gp"));
+  EXPECT_FALSE(fs::exists(d / "psnr_vs_fps.png"));
+}
+
 }  // namespace
