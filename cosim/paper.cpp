@@ -6,9 +6,8 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cosim/engines.hpp"
 #include "cosim/image_io.hpp"
@@ -177,7 +176,8 @@ void write_json(const Vizard2Options& o, const Vizard2Result& r, const std::stri
   j["image_size"] = o.image_size;
   j["volume"] = "phantom:tube?size=" + std::to_string(o.volume_size);
   j["profile"] = o.profile;
-  j["truth"] = {{"reference", "float"}, {"oversampling", o.truth.oversampling},
+  j["truth"] = {{"reference", "float"},
+                {"oversampling", o.truth.oversampling},
                 {"ert_threshold", kTruthErtThreshold}};
   j["criterion"] = {{"min_psnr_db", kSatisfactoryPsnr},
                     {"min_ssim", kSatisfactorySsim},
@@ -247,15 +247,16 @@ void write_markdown(const Vizard2Options& o, const Vizard2Result& r, const std::
        << " | " << num(c.sampling.psnr_db) << " | " << num(c.sampling.pct_within_1lsb) << " | "
        << num(c.sampling.max_abs_err_lsb) << " | " << num(c.sampling.ssim, 4) << " | "
        << num(c.card.psnr_db) << " | " << num(c.card.pct_within_1lsb) << " | "
-       << num(c.card.ssim, 4) << " | " << (c.fps ? num(*c.fps, 1) : "n/a: " + c.rtl_note)
-       << " | " << (c.ns_per_sample ? num(*c.ns_per_sample) : "n/a") << " |\n";
+       << num(c.card.ssim, 4) << " | " << (c.fps ? num(*c.fps, 1) : "n/a: " + c.rtl_note) << " | "
+       << (c.ns_per_sample ? num(*c.ns_per_sample) : "n/a") << " |\n";
   md << "\n## Images\n\nThe card's image per cell, then its error against the truth (black 0, "
      << "red, yellow, white at 16 LSB and above).\n\n"
      << "| transfer function | 1x | 2x | 4x | 8x | truth |\n|---|---|---|---|---|---|\n";
   for (const std::string& tf : kTransferFunctions) {
     md << "| " << tf;
     for (const CellResult& c : r.cells)
-      if (c.tf == tf) md << " | ![" << tf << " " << os_name(c.oversampling) << "](" << c.image << ")";
+      if (c.tf == tf)
+        md << " | ![" << tf << " " << os_name(c.oversampling) << "](" << c.image << ")";
     md << " | ![" << tf << " truth](truth_" << tf << ".png) |\n| " << tf << " error";
     for (const CellResult& c : r.cells)
       if (c.tf == tf)
@@ -302,9 +303,9 @@ ref::Scene vizard2_scene(const Vizard2Options& o, const std::string& tf, double 
   replace_all(text, "@EY@", num(h, 6));
   replace_all(text, "@EZ@", num(0.3 * h, 6));
   replace_all(text, "@CZ@", num(1.3 * h, 6));
-  return ref::parse_scene(text, "paper vizard2 (" + tf + ")", ".",
-                          {"precision.profile=" + o.profile,
-                           "render.oversampling=" + num(oversampling, 6)});
+  return ref::parse_scene(
+      text, "paper vizard2 (" + tf + ")", ".",
+      {"precision.profile=" + o.profile, "render.oversampling=" + num(oversampling, 6)});
 }
 
 Vizard2Result run_vizard2(const Vizard2Options& o) {
@@ -336,16 +337,19 @@ Vizard2Result run_vizard2(const Vizard2Options& o) {
   std::vector<std::vector<std::string>> warnings(n);
   std::vector<std::exception_ptr> failures(n);
   const int workers = std::min<int>(ref::worker_count(0), static_cast<int>(n));
-  ref::parallel_for(static_cast<int>(n), [&](int i) {
-    const std::size_t k = static_cast<std::size_t>(i);
-    const std::size_t t = k / kOversampling.size();
-    try {
-      cells[k] = run_cell(o, kTransferFunctions[t], kOversampling[k % kOversampling.size()], sv,
-                          truths[t], 1, warnings[k]);
-    } catch (...) {
-      failures[k] = std::current_exception();
-    }
-  }, workers);
+  ref::parallel_for(
+      static_cast<int>(n),
+      [&](int i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        const std::size_t t = k / kOversampling.size();
+        try {
+          cells[k] = run_cell(o, kTransferFunctions[t], kOversampling[k % kOversampling.size()], sv,
+                              truths[t], 1, warnings[k]);
+        } catch (...) {
+          failures[k] = std::current_exception();
+        }
+      },
+      workers);
   for (const std::exception_ptr& f : failures)
     if (f) std::rethrow_exception(f);
   r.cells = std::move(cells);
@@ -367,11 +371,12 @@ void print_vizard2_summary(std::ostream& os, const Vizard2Result& r) {
   os << std::fixed << std::setprecision(2);
   os << "tf      os   sampling PSNR  within 1 LSB   card PSNR  within 1 LSB   frames/s\n";
   for (const CellResult& c : r.cells)
-    os << std::left << std::setw(8) << c.tf << std::setw(5) << os_name(c.oversampling)
-       << std::right << std::setw(13) << c.sampling.psnr_db << std::setw(13)
-       << c.sampling.pct_within_1lsb << "%" << std::setw(12) << c.card.psnr_db << std::setw(13)
-       << c.card.pct_within_1lsb << "%" << std::setw(11) << (c.fps ? *c.fps : 0.0) << "\n";
-  os << "finding  0.25 voxel needed for the binary wall: " << (r.finding_holds ? "holds" : "does not hold")
+    os << std::left << std::setw(8) << c.tf << std::setw(5) << os_name(c.oversampling) << std::right
+       << std::setw(13) << c.sampling.psnr_db << std::setw(13) << c.sampling.pct_within_1lsb << "%"
+       << std::setw(12) << c.card.psnr_db << std::setw(13) << c.card.pct_within_1lsb << "%"
+       << std::setw(11) << (c.fps ? *c.fps : 0.0) << "\n";
+  os << "finding  0.25 voxel needed for the binary wall: "
+     << (r.finding_holds ? "holds" : "does not hold")
      << "; ramp lowers the rate: " << (r.ramp_lowers_rate ? "yes" : "no") << "\n         "
      << r.finding << "\n";
   for (const std::string& w : r.warnings) std::cerr << "voxcast: warning: " << w << "\n";

@@ -21,10 +21,10 @@ namespace voxcast::cosim::paper {
 
 struct Vizard2Options {
   std::string out_dir;
-  int image_size = 128;     // pixels per side (the paper's frames are 256)
-  int volume_size = 128;    // voxels per side of the tube phantom
+  int image_size = 128;             // pixels per side (the paper's frames are 256)
+  int volume_size = 128;            // voxels per side of the tube phantom
   std::string profile = "vizard2";  // the card's widths
-  TruthSettings truth;      // 16x by default
+  TruthSettings truth;              // 16x by default
 };
 
 // The experiment's transfer functions, by name ("binary", "ramp").

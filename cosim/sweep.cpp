@@ -1,5 +1,6 @@
 #include "cosim/sweep.hpp"
 
+#include <toml++/toml.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,8 +17,6 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
-
-#include <toml++/toml.h>
 
 #include "cosim/metrics.hpp"
 #include "cosim/sweep_plot.hpp"
@@ -58,9 +57,9 @@ rtl::RtlConfig rtl_config_of(const ref::Scene&) { return rtl::vizard2_baseline()
 
 std::vector<Cell> measure_rtl_cells(const PointContext& p) {
   if (!rtl::rtl_supports(p.scene.precision)) {
-    const Cell na = Cell::na("rtl runs only the compiled presets (" +
-                             rtl::rtl_supported_profiles() + "); this profile is " +
-                             p.scene.precision_name);
+    const Cell na =
+        Cell::na("rtl runs only the compiled presets (" + rtl::rtl_supported_profiles() +
+                 "); this profile is " + p.scene.precision_name);
     return {na, na, na};
   }
   try {
@@ -197,7 +196,8 @@ class Progress {
     const double eta = elapsed / static_cast<double>(done_) * static_cast<double>(total_ - done_);
     const int width = 30;
     const int filled = static_cast<int>(width * done_ / std::max<std::size_t>(total_, 1));
-    std::cerr << (tty_ ? "\r" : "") << "sweep [" << std::string(static_cast<std::size_t>(filled), '#')
+    std::cerr << (tty_ ? "\r" : "") << "sweep ["
+              << std::string(static_cast<std::size_t>(filled), '#')
               << std::string(static_cast<std::size_t>(width - filled), '.') << "] " << done_ << "/"
               << total_ << " " << std::setw(3) << 100 * done_ / std::max<std::size_t>(total_, 1)
               << "%  elapsed " << clock_text(elapsed) << "  ETA " << clock_text(eta)
@@ -252,11 +252,12 @@ void mark_fronts(Table& t, bool complete) {
 
 void write_run_json(const std::string& path, const SweepOptions& o, const SweepSummary& s,
                     const std::vector<PointOutcome>& outcomes) {
-  nlohmann::json j = {{"jobs", o.jobs},
-                      {"shard", std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count)},
-                      {"seconds", s.seconds},
-                      {"truth_renders", s.truth_renders},
-                      {"point_seconds", nlohmann::json::object()}};
+  nlohmann::json j = {
+      {"jobs", o.jobs},
+      {"shard", std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count)},
+      {"seconds", s.seconds},
+      {"truth_renders", s.truth_renders},
+      {"point_seconds", nlohmann::json::object()}};
   for (const PointOutcome& p : outcomes)
     j["point_seconds"][std::to_string(p.row.index)] = p.seconds;
   std::ofstream out(path);
@@ -269,8 +270,9 @@ void write_run_json(const std::string& path, const SweepOptions& o, const SweepS
 const std::vector<ColumnGroup>& column_groups() {
   static const std::vector<ColumnGroup> groups = {
       {"accuracy",
-       {{"engine", Kind::Text, "", "engine of the accuracy figures: hls, or bittrue (bit-exact "
-                                   "with hls) for a profile hls is not compiled for"},
+       {{"engine", Kind::Text, "",
+         "engine of the accuracy figures: hls, or bittrue (bit-exact "
+         "with hls) for a profile hls is not compiled for"},
         {"psnr_db", Kind::Number, "dB", "PSNR against the truth (peak 2^out_bits - 1)"},
         {"max_err_lsb", Kind::Number, "LSB", "largest channel error against the truth"},
         {"mean_err_lsb", Kind::Number, "LSB", "mean channel error against the truth"},

@@ -23,10 +23,10 @@ namespace voxcast::cosim::sweep {
 
 struct SweepOptions {
   std::string out_dir;
-  int jobs = 1;          // points in parallel
-  Shard shard;           // 0/1: the whole sweep
-  bool progress = false; // force the progress bar (it is on when stderr is a TTY)
-  bool plots = true;     // PNG and SVG through gnuplot
+  int jobs = 1;           // points in parallel
+  Shard shard;            // 0/1: the whole sweep
+  bool progress = false;  // force the progress bar (it is on when stderr is a TTY)
+  bool plots = true;      // PNG and SVG through gnuplot
 };
 
 // What a column group sees of one point, after the design's image is rendered.
@@ -55,9 +55,9 @@ const std::vector<ColumnGroup>& column_groups();
 const std::vector<Front>& pareto_fronts();
 
 struct SweepSummary {
-  std::size_t points = 0;          // points this run computed
-  std::size_t points_total = 0;    // points of the whole sweep
-  std::size_t truth_renders = 0;   // distinct truth images rendered (sweep; 0 for a merge)
+  std::size_t points = 0;         // points this run computed
+  std::size_t points_total = 0;   // points of the whole sweep
+  std::size_t truth_renders = 0;  // distinct truth images rendered (sweep; 0 for a merge)
   bool merged = false;
   double seconds = 0.0;
   std::vector<std::string> written;

@@ -53,7 +53,8 @@ bool expand_range(const std::string& v, const std::string& where, std::vector<st
     throw Error(where + ": range " + v + " must be two integers A..B");
   if (a > b) throw Error(where + ": range " + v + " is empty (A > B)");
   if (b - a >= static_cast<long long>(kMaxPoints))
-    throw Error(where + ": range " + v + " has more than " + std::to_string(kMaxPoints) + " values");
+    throw Error(where + ": range " + v + " has more than " + std::to_string(kMaxPoints) +
+                " values");
   for (long long i = a; i <= b; ++i) out.push_back(std::to_string(i));
   return true;
 }
@@ -92,7 +93,8 @@ Shard parse_shard(const std::string& spec) {
     throw Error(where + ": expected i/n, e.g. 0/4 (shards are numbered from 0)");
   if (n < 1 || n > 100000) throw Error(where + ": n must be in [1, 100000]");
   if (i < 0 || i >= n)
-    throw Error(where + ": i must be in [0, " + std::to_string(n - 1) + "] (shards are numbered from 0)");
+    throw Error(where + ": i must be in [0, " + std::to_string(n - 1) +
+                "] (shards are numbered from 0)");
   return {static_cast<int>(i), static_cast<int>(n)};
 }
 

@@ -94,8 +94,7 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
   std::vector<PlotPoint> pf;
   for (const Row& r : t.rows) {
     const auto x = r.cells[fps].value(), y = r.cells[psnr].value();
-    if (ok(r) && x && y && std::isfinite(*y))
-      pf.push_back({*x, *y, r.cells[front].text == "yes"});
+    if (ok(r) && x && y && std::isfinite(*y)) pf.push_back({*x, *y, r.cells[front].text == "yes"});
   }
   std::sort(pf.begin(), pf.end(), [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
   std::vector<std::pair<std::string, std::string>> bodies;  // stem, plot commands
@@ -126,8 +125,10 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
     if (!numeric || pts.empty()) continue;
     const std::string stem = "psnr_vs_" + file_stem(key);
     write_dat(path(stem + ".dat"), pts, false);
-    bodies.push_back({stem, "set xlabel '" + key + "'\nset ylabel 'PSNR against the truth (dB)'\n"
-                            "plot '" + stem + ".dat' using 1:2 with points pt 7 title 'points'\n"});
+    bodies.push_back({stem, "set xlabel '" + key +
+                                "'\nset ylabel 'PSNR against the truth (dB)'\n"
+                                "plot '" +
+                                stem + ".dat' using 1:2 with points pt 7 title 'points'\n"});
   }
   for (const char* term : {"pngcairo size 800,600", "svg size 800,600"})
     for (const auto& [stem, body] : bodies) {

@@ -165,10 +165,10 @@ Table table_from_json(const nlohmann::json& j, const std::string& origin) {
   try {
     t.meta = j.at("sweep");
     for (const auto& c : j.at("columns"))
-      t.columns.push_back({c.at("name").get<std::string>(),
-                           c.at("kind").get<std::string>() == "number" ? Column::Kind::Number
-                                                                        : Column::Kind::Text,
-                           c.at("unit").get<std::string>(), c.at("doc").get<std::string>()});
+      t.columns.push_back(
+          {c.at("name").get<std::string>(),
+           c.at("kind").get<std::string>() == "number" ? Column::Kind::Number : Column::Kind::Text,
+           c.at("unit").get<std::string>(), c.at("doc").get<std::string>()});
     for (const auto& r : j.at("rows")) {
       Row row;
       row.index = r.at("index").get<std::size_t>();

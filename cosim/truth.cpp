@@ -1,8 +1,8 @@
 #include "cosim/truth.hpp"
 
-#include <sstream>
-
 #include <toml++/toml.h>
+
+#include <sstream>
 
 #include "refmodel/error.hpp"
 #include "refmodel/render/raycaster.hpp"

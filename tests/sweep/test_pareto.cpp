@@ -15,28 +15,28 @@ using Opt = std::optional<double>;
 TEST(Pareto, MarksTheNonDominatedPointsIncludingExactTies) {
   // (PSNR, frames/s), both maximised.
   const std::vector<std::vector<Opt>> pts = {
-      {40.0, 100.0},      // 0: on (tied with 1: neither dominates the other)
-      {40.0, 100.0},      // 1: on
-      {45.0, 50.0},       // 2: on (tied with 7)
-      {40.0, 90.0},       // 3: off: 0 is as accurate and faster
-      {30.0, 200.0},      // 4: on: the fastest
-      {30.0, 150.0},      // 5: off: 4 is as accurate and faster
+      {40.0, 100.0},          // 0: on (tied with 1: neither dominates the other)
+      {40.0, 100.0},          // 1: on
+      {45.0, 50.0},           // 2: on (tied with 7)
+      {40.0, 90.0},           // 3: off: 0 is as accurate and faster
+      {30.0, 200.0},          // 4: on: the fastest
+      {30.0, 150.0},          // 5: off: 4 is as accurate and faster
       {std::nullopt, 300.0},  // 6: not available
-      {45.0, 50.0},       // 7: on
-      {46.0, 49.0},       // 8: on: the most accurate
-      {39.0, 100.0},      // 9: off: 0 is as fast and more accurate
+      {45.0, 50.0},           // 7: on
+      {46.0, 49.0},           // 8: on: the most accurate
+      {39.0, 100.0},          // 9: off: 0 is as fast and more accurate
   };
   const auto on = pareto_front(pts, {true, true});
-  const std::vector<std::optional<bool>> expected = {true, true,        true, false, true,
-                                                     false, std::nullopt, true, true, false};
+  const std::vector<std::optional<bool>> expected = {true,  true,         true, false, true,
+                                                     false, std::nullopt, true, true,  false};
   ASSERT_EQ(on.size(), expected.size());
   for (std::size_t i = 0; i < on.size(); ++i) EXPECT_EQ(on[i], expected[i]) << "point " << i;
 }
 
 TEST(Pareto, AMinimisedObjectiveReversesTheOrder) {
   // (PSNR max, LUTs min).
-  const std::vector<std::vector<Opt>> pts = {{40.0, 1000.0}, {40.0, 900.0}, {50.0, 2000.0},
-                                             {35.0, 900.0}};
+  const std::vector<std::vector<Opt>> pts = {
+      {40.0, 1000.0}, {40.0, 900.0}, {50.0, 2000.0}, {35.0, 900.0}};
   const auto on = pareto_front(pts, {true, false});
   EXPECT_EQ(on[0], false);  // 1 is as accurate and smaller
   EXPECT_EQ(on[1], true);
@@ -100,7 +100,7 @@ TEST(SweepTable, MergeRejectsOverlapsGapsAndOtherSweeps) {
   ASSERT_EQ(m.rows.size(), 5u);
   for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(m.rows[i].index, i);
   EXPECT_FALSE(m.meta.contains("shard"));
-  EXPECT_THROW(merge_tables({a}, {"a"}), voxcast::Error);        // points 1, 3 missing
+  EXPECT_THROW(merge_tables({a}, {"a"}), voxcast::Error);                   // points 1, 3 missing
   EXPECT_THROW(merge_tables({a, a, b}, {"a", "a2", "b"}), voxcast::Error);  // twice
   Table other = b;
   other.meta["scene"] = "other.toml";

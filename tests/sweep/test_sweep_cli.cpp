@@ -24,8 +24,8 @@ const nlohmann::json& row_with(const nlohmann::json& results, const std::vector<
 
 TEST(CosimTruth, ReportHasTheTruthSection) {
   const auto d = temp_dir("cosim_truth");
-  const Command r = run("cosim " + tiny_scene() + " --out " + d.string() +
-                        " --truth-oversampling 8");
+  const Command r =
+      run("cosim " + tiny_scene() + " --out " + d.string() + " --truth-oversampling 8");
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = json_of(d / "report.json");
   const nlohmann::json& t = j.at("truth");
@@ -60,9 +60,9 @@ TEST(Sweep, AccuracyFiguresEqualCosimsForTheSamePoint) {
                           " --set precision.weight_bits=" + p.weight_bits);
     ASSERT_EQ(c.status, 0) << c.output;
     const nlohmann::json truth = json_of(out / "report.json").at("truth");
-    const nlohmann::json& row =
-        row_with(results, {"precision.profile", "precision.weight_bits"}, {p.profile, p.weight_bits})
-            .at("cells");
+    const nlohmann::json& row = row_with(results, {"precision.profile", "precision.weight_bits"},
+                                         {p.profile, p.weight_bits})
+                                    .at("cells");
     EXPECT_EQ(row.at("engine"), p.engine);
     EXPECT_EQ(truth.at("engine"), p.engine);
     EXPECT_EQ(row.at("psnr_db"), truth.at("psnr_db"));
@@ -114,10 +114,9 @@ TEST(Sweep, ShardsMergedEqualASingleRun) {
   for (const auto& r : merged.at("rows")) on_front += r.at("cells").at("pareto_psnr_fps") == "yes";
   EXPECT_GE(on_front, 1);
   // A missing or repeated shard is a one-line error.
-  for (const std::string& bad :
-       {(d / "s0").string() + " " + (d / "s1").string(),
-        (d / "s0").string() + " " + (d / "s0").string() + " " + (d / "s1").string() + " " +
-            (d / "s2").string()}) {
+  for (const std::string& bad : {(d / "s0").string() + " " + (d / "s1").string(),
+                                 (d / "s0").string() + " " + (d / "s0").string() + " " +
+                                     (d / "s1").string() + " " + (d / "s2").string()}) {
     const Command r = run("sweep-merge " + bad + " --out " + (d / "bad").string());
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << r.output;

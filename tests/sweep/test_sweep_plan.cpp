@@ -91,14 +91,18 @@ TEST(SweepPlan, UnknownKeysAndBadValuesFailBeforeAnythingRuns) {
     std::vector<std::string> sets;
     const char* message;
   } cases[] = {
-      {{"precision.wieght_bits=3"}, {},
+      {{"precision.wieght_bits=3"},
+       {},
        "--vary precision.wieght_bits=3: unknown key precision.wieght_bits (did you mean "
        "precision.weight_bits?)"},
-      {{"precision.weight_bits=4..11"}, {},
+      {{"precision.weight_bits=4..11"},
+       {},
        "--vary precision.weight_bits=11: precision.weight_bits = 11 is outside [1, 10]"},
-      {{"render.oversampling=1", "render.oversampling=2"}, {},
+      {{"render.oversampling=1", "render.oversampling=2"},
+       {},
        "--vary render.oversampling: the key is varied twice"},
-      {{"render.oversampling=1,2"}, {"render.oversampling=4"},
+      {{"render.oversampling=1,2"},
+       {"render.oversampling=4"},
        "--vary render.oversampling: the key is also fixed by --set render.oversampling=4"},
       {{}, {}, "sweep: give at least one --vary"},
       {{"render.oversampling=1,2"}, {"render.width=0"}, "render.width = 0 is outside"},
@@ -109,8 +113,9 @@ TEST(SweepPlan, UnknownKeysAndBadValuesFailBeforeAnythingRuns) {
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
   // The truth must sample at least as densely as every point.
-  const std::string e = error_of(
-      [&] { make_plan(scene(), {}, {"render.oversampling=2,8"}, voxcast::cosim::TruthSettings{4.0}); });
+  const std::string e = error_of([&] {
+    make_plan(scene(), {}, {"render.oversampling=2,8"}, voxcast::cosim::TruthSettings{4.0});
+  });
   EXPECT_NE(e.find("truth oversampling 4 is below the scene's render.oversampling 8"),
             std::string::npos)
       << e;

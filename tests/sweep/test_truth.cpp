@@ -8,8 +8,8 @@
 
 namespace {
 
-using voxcast::cosim::TruthSettings;
 using voxcast::cosim::truth_key;
+using voxcast::cosim::TruthSettings;
 
 voxcast::ref::Scene scene(const voxcast::ref::Overrides& sets = {}) {
   return voxcast::ref::load_scene_file(
@@ -19,16 +19,15 @@ voxcast::ref::Scene scene(const voxcast::ref::Overrides& sets = {}) {
 TEST(Truth, KeyIgnoresWhatTheTruthDoesNotDependOn) {
   const std::string base = truth_key(scene(), {});
   for (const char* set : {"precision.profile=vizard2", "precision.weight_bits=3",
-                          "render.oversampling=8", "render.ert_threshold=0.5",
-                          "render.threads=1"})
+                          "render.oversampling=8", "render.ert_threshold=0.5", "render.threads=1"})
     EXPECT_EQ(truth_key(scene({set}), {}), base) << set;
 }
 
 TEST(Truth, KeyFollowsEverythingElse) {
   const std::string base = truth_key(scene(), {});
-  for (const char* set : {"classification.interpolation=binary", "render.width=25",
-                          "camera.fov_deg=60", "lights[0].intensity=0.5",
-                          "volume.source=phantom:tube?size=33", "render.mode=unshaded"})
+  for (const char* set :
+       {"classification.interpolation=binary", "render.width=25", "camera.fov_deg=60",
+        "lights[0].intensity=0.5", "volume.source=phantom:tube?size=33", "render.mode=unshaded"})
     EXPECT_NE(truth_key(scene({set}), {}), base) << set;
   EXPECT_NE(truth_key(scene(), TruthSettings{8.0}), base);
 }
