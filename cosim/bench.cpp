@@ -10,6 +10,7 @@
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 #include "rtl_model/engine.hpp"
+#include "rtl_model/scene_config.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -61,7 +62,7 @@ std::vector<BenchResult> run_bench(const ref::Scene& scene, const std::vector<st
           hls_render_image(setup, memory, threads, &fs);
         } else if (e == Engine::Rtl) {
           // Simulated samples per host second (the simulation is one thread).
-          return rtl::rtl_render(setup, memory, rtl::vizard2_baseline()).stats.samples;
+          return rtl::rtl_render(setup, memory, rtl::rtl_config(scene.rtl)).stats.samples;
         } else {
           bittrue::bt_render_image(setup, memory, threads, &fs);
         }

@@ -63,13 +63,17 @@ nlohmann::json accuracy_json(const Accuracy& a) {
           {"mean_abs_err_lsb", a.mean_abs_err_lsb},
           {"rms_err_lsb", a.rms_err_lsb},
           {"pct_within_1lsb", a.pct_within_1lsb},
+          {"ssim", std::isnan(a.ssim) ? nlohmann::json(nullptr) : nlohmann::json(a.ssim)},
           {"worst_pixel", {a.worst_x, a.worst_y}}};
 }
 
 }  // namespace
 
-CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
+CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
+                      const TruthSettings& truth_settings) {
   CosimResult r;
+  r.truth = truth_settings;
+  check_truth_settings(truth_settings, scene);
   std::filesystem::create_directories(out_dir);
   const SceneVolume sv = load_scene_volume(scene);
   // A profile the hls engine is not compiled for is still measured, through
@@ -140,6 +144,10 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
     r.written.push_back(m.reproducer);
   }
   r.accuracy = measure_accuracy(hls, truth);
+  t0 = Clock::now();
+  const ref::Image high = render_truth(scene, sv, truth_settings);
+  r.seconds_truth = seconds_since(t0);
+  r.truth_accuracy = measure_accuracy(hls, high);
 
   // Images: float, hls, bit-true, the signed difference and a heat map.
   const ref::Image hls_img = hls.to_image();
@@ -150,7 +158,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   if (r.hls_ran) write_image(path("hls.png"), hls_img, scene.render.background);
   write_image(path("bittrue.png"), bt.to_image(), scene.render.background);
   write_image(path("diff.png"), error_heat_map(hls, truth, 4.0), glm::dvec3(0.0));
-  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png"})
+  write_image(path("truth.png"), high, scene.render.background);
+  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png", "truth.png"})
     if (r.hls_ran || std::string(f) != "hls.png") r.written.push_back(path(f));
 
   nlohmann::json j;
@@ -188,6 +197,11 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
   const nlohmann::json acc = accuracy_json(r.accuracy);
   for (auto it = acc.begin(); it != acc.end(); ++it) j[it.key()] = it.value();
   j["diff_heat_map_full_scale_lsb"] = 4.0;
+  j["truth"] = accuracy_json(r.truth_accuracy);
+  j["truth"]["engine"] = r.hls_ran ? "hls" : "bittrue";
+  j["truth"]["reference"] = "float";
+  j["truth"]["oversampling"] = truth_settings.oversampling;
+  j["truth"]["ert_threshold"] = kTruthErtThreshold;
   if (!r.bit_exact)
     j["mismatch"] = {{"engine", r.mismatch.engine},
                      {"pixel", {r.mismatch.x, r.mismatch.y}},
@@ -196,7 +210,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
                      {"reproducer", r.mismatch.reproducer}};
   j["samples_by_engine"] = {{"float", r.samples_float}, {"hls", r.samples_hls}};
   j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls},
-                  {"rtl", r.seconds_rtl}};
+                  {"rtl", r.seconds_rtl}, {"truth", r.seconds_truth}};
   j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
                 {"mode", ref::to_string(scene.render.mode)},
                 {"oversampling", scene.render.oversampling}};
@@ -224,6 +238,11 @@ void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimR
      << "accuracy   " << (r.hls_ran ? "hls" : "bit-true") << " vs float: PSNR " << a.psnr_db << " dB, max " << a.max_abs_err_lsb
      << " LSB, rms " << std::setprecision(3) << a.rms_err_lsb << " LSB, " << std::setprecision(2)
      << a.pct_within_1lsb << "% of pixels within 1 LSB\n"
+     << "truth      " << (r.hls_ran ? "hls" : "bit-true") << " vs float at " << r.truth.oversampling
+     << "x oversampling, ERT at 1 - 2^-20: PSNR " << r.truth_accuracy.psnr_db << " dB, max "
+     << r.truth_accuracy.max_abs_err_lsb << " LSB, " << r.truth_accuracy.pct_within_1lsb
+     << "% within 1 LSB, SSIM " << std::setprecision(4) << r.truth_accuracy.ssim
+     << std::setprecision(2) << "\n"
      << "speed      float " << rate(r.samples_float, r.seconds_float) << " M samples/s, hls "
      << rate(r.samples_hls, r.seconds_hls) << " M samples/s, bit-true "
      << rate(r.samples_float, r.seconds_bittrue) << " M samples/s (float's sample count)\n";

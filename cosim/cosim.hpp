@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cosim/metrics.hpp"
+#include "cosim/truth.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/scene/scene.hpp"
 
@@ -26,16 +27,20 @@ struct CosimResult {
   bool rtl_exact = true;      // rtl == hls
   std::uint64_t rtl_cycles = 0;
   double rtl_fps = 0.0, rtl_ns_per_sample = 0.0;
-  Accuracy accuracy;          // hls against the float reference
+  Accuracy accuracy;          // hls against the float reference at the same settings
+  TruthSettings truth;        // how the truth was rendered
+  Accuracy truth_accuracy;    // hls (bit-true if !hls_ran) against the truth
   Mismatch mismatch;          // when !bit_exact
   std::uint64_t samples_float = 0, samples_hls = 0;
-  double seconds_float = 0, seconds_bittrue = 0, seconds_hls = 0, seconds_rtl = 0;
+  double seconds_float = 0, seconds_bittrue = 0, seconds_hls = 0, seconds_rtl = 0, seconds_truth = 0;
   std::vector<std::string> written;
 };
 
 // Writes DIR/report.json, DIR/layers.exr (float, hls and difference layers)
-// and DIR/{float,hls,bittrue,diff}.png.
-CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir);
+// and DIR/{float,hls,bittrue,diff,truth}.png. report.json's "truth" section
+// holds the design's accuracy against the truth (cosim/truth.hpp).
+CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
+                      const TruthSettings& truth = {});
 
 void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r);
 

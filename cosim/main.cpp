@@ -11,8 +11,10 @@
 #include "cosim/synth_script.hpp"
 #include "cosim/cosim.hpp"
 #include "cosim/flythrough.hpp"
+#include "cosim/paper.hpp"
 #include "cosim/regress.hpp"
 #include "cosim/report.hpp"
+#include "cosim/sweep.hpp"
 #include "cosim/tune.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
@@ -64,6 +66,45 @@ int main(int argc, char** argv) {
   cosim->add_option("scene", cosim_scene, "Scene file (TOML)")->required();
   cosim->add_option("--out", cosim_out, "Output folder (report.json, layers.exr, PNGs)")->required();
   add_set_option(*cosim, cosim_sets);
+  voxcast::cosim::TruthSettings cosim_truth;
+  cosim->add_option("--truth-oversampling", cosim_truth.oversampling,
+                    "Oversampling of the truth (the float reference) for report.json's truth section")
+      ->capture_default_str();
+
+  // sweep SCENE --vary KEY=V1,V2,... --out DIR ; sweep-merge DIR... --out DIR (docs/sweep.md)
+  std::string sweep_scene, sweep_shard = "0/1";
+  std::vector<std::string> sweep_vary;
+  Overrides sweep_sets;
+  voxcast::cosim::TruthSettings sweep_truth;
+  voxcast::cosim::sweep::SweepOptions sweep_opts;
+  bool sweep_no_plots = false;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "Accuracy against the truth and modelled speed over a product of scene settings");
+  sweep->add_option("scene", sweep_scene, "Scene file (TOML)")->required();
+  sweep->add_option("--vary", sweep_vary,
+                    "KEY=V1,V2,... or KEY=A..B (integers); repeat for a product")
+      ->take_all()
+      ->allow_extra_args(false)
+      ->required();
+  sweep->add_option("--out", sweep_opts.out_dir, "Output folder (results.csv, results.json, plots)")
+      ->required();
+  sweep->add_option("--jobs", sweep_opts.jobs, "Points in parallel")->capture_default_str();
+  sweep->add_option("--shard", sweep_shard, "Compute only the points with index % n == i (i/n)")
+      ->capture_default_str();
+  sweep->add_flag("--progress", sweep_opts.progress, "Progress on stderr even when not a TTY");
+  sweep->add_flag("--no-plots", sweep_no_plots, "Do not run gnuplot");
+  sweep->add_option("--truth-oversampling", sweep_truth.oversampling,
+                    "Oversampling of the truth (the float reference)")
+      ->capture_default_str();
+  add_set_option(*sweep, sweep_sets);
+  std::vector<std::string> merge_dirs;
+  std::string merge_out;
+  bool merge_no_plots = false;
+  CLI::App* sweep_merge = app.add_subcommand(
+      "sweep-merge", "Join the outputs of sweep --shard i/n runs into the single run's results");
+  sweep_merge->add_option("dirs", merge_dirs, "Output folders of the shards")->required();
+  sweep_merge->add_option("--out", merge_out, "Output folder")->required();
+  sweep_merge->add_flag("--no-plots", merge_no_plots, "Do not run gnuplot");
 
   // regress
   voxcast::cosim::RegressOptions regress_opts{"scenes", "tests/golden/regress",
@@ -78,6 +119,24 @@ int main(int argc, char** argv) {
                     "Measure accuracy against the float reference and (re)write the golden files "
                     "of the cases that meet their floor");
   add_set_option(*regress, regress_opts.overrides);
+
+  // paper vizard2 --out DIR
+  std::string paper_name;
+  voxcast::cosim::paper::Vizard2Options paper_opts;
+  CLI::App* paper = app.add_subcommand(
+      "paper", "Reproduce a paper's experiment as a Markdown report (vizard2: oversampling)");
+  paper->add_option("experiment", paper_name, "vizard2")->required();
+  paper->add_option("--out", paper_opts.out_dir, "Output folder (report.md, results.json, images)")
+      ->required();
+  paper->add_option("--size", paper_opts.image_size, "Image width and height in pixels")
+      ->capture_default_str();
+  paper->add_option("--volume-size", paper_opts.volume_size, "Tube phantom voxels per side")
+      ->capture_default_str();
+  paper->add_option("--profile", paper_opts.profile, "Precision preset of the card")
+      ->capture_default_str();
+  paper->add_option("--truth-oversampling", paper_opts.truth.oversampling,
+                    "Oversampling of the truth (the float reference)")
+      ->capture_default_str();
 
   // bench SCENE
   std::string bench_scene;
@@ -188,7 +247,7 @@ int main(int argc, char** argv) {
       voxcast::cosim::print_summary(std::cout, scene, summary);
     } else if (*cosim) {
       const auto scene = voxcast::ref::load_scene_file(cosim_scene, cosim_sets);
-      const auto r = voxcast::cosim::run_cosim(scene, cosim_out);
+      const auto r = voxcast::cosim::run_cosim(scene, cosim_out, cosim_truth);
       voxcast::cosim::print_cosim_summary(std::cout, scene, r);
       if (!r.bit_exact) {
         std::cerr << "voxcast: " << r.mismatch.engine << " differs from "
@@ -198,6 +257,20 @@ int main(int argc, char** argv) {
                   << "; reproducer " << r.mismatch.reproducer << "\n";
         return 3;
       }
+    } else if (*sweep) {
+      namespace sw = voxcast::cosim::sweep;
+      sweep_opts.shard = sw::parse_shard(sweep_shard);
+      sweep_opts.plots = !sweep_no_plots;
+      const sw::Plan plan = sw::make_plan(sweep_scene, sweep_sets, sweep_vary, sweep_truth);
+      sw::print_sweep_summary(std::cout, sw::run_sweep(plan, sweep_opts));
+    } else if (*sweep_merge) {
+      namespace sw = voxcast::cosim::sweep;
+      sw::print_sweep_summary(std::cout, sw::run_sweep_merge(merge_dirs, merge_out, !merge_no_plots));
+    } else if (*paper) {
+      if (paper_name != "vizard2")
+        throw voxcast::Error("paper: unknown experiment \"" + paper_name + "\" (vizard2)");
+      voxcast::cosim::paper::print_vizard2_summary(
+          std::cout, voxcast::cosim::paper::run_vizard2(paper_opts));
     } else if (*bench) {
       const auto scene = voxcast::ref::load_scene_file(bench_scene, bench_sets);
       voxcast::cosim::print_bench(std::cout, scene,

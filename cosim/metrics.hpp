@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "refmodel/render/image.hpp"
 #include "refmodel/render/quant_image.hpp"
@@ -18,10 +19,50 @@ struct Accuracy {
   double rms_err_lsb = 0.0;
   double psnr_db = 0.0;          // 20 log10(peak / rms); +inf when rms = 0
   double pct_within_1lsb = 0.0;  // pixels whose three channels are all within 1 LSB
+  double ssim = 0.0;             // mean SSIM of the three channels; NaN if smaller than 11x11
   int worst_x = -1, worst_y = -1;
 };
 
 Accuracy measure_accuracy(const ref::QuantImage& test, const ref::Image& truth);
+
+// --- SSIM (Wang, Bovik, Sheikh & Simoncelli, IEEE Trans. Image Processing 13(4),
+// 2004, eq. 13 and section III-C) ---------------------------------------------
+// One channel as numbers on the output's scale (LSBs, 0 .. 2^bits - 1), row-major.
+struct Plane {
+  int width = 0, height = 0;
+  std::vector<double> v;
+  Plane() = default;
+  Plane(int w, int h, double fill = 0.0)
+      : width(w), height(h), v(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
+  double& at(int x, int y) { return v[static_cast<std::size_t>(y) * width + x]; }
+  double at(int x, int y) const { return v[static_cast<std::size_t>(y) * width + x]; }
+};
+
+// The paper's constants: an 11x11 circular-symmetric Gaussian window of
+// standard deviation 1.5 (normalised to sum 1), K1 = 0.01, K2 = 0.03.
+struct SsimParams {
+  int window = 11;
+  double sigma = 1.5;
+  double k1 = 0.01, k2 = 0.03;
+};
+
+// Mean SSIM over every window position that lies wholly inside the image (the
+// paper's MATLAB "valid" filtering), with C1 = (K1 L)^2, C2 = (K2 L)^2 and
+// L = dynamic_range:
+//   SSIM = (2 mx my + C1)(2 sxy + C2) / ((mx^2 + my^2 + C1)(sx^2 + sy^2 + C2)),
+// m, s^2 and sxy the window-weighted means, variances and covariance
+// (docs/accuracy.md). NaN when the image is smaller than the window.
+double ssim(const Plane& x, const Plane& y, double dynamic_range, const SsimParams& p = {});
+
+// A quantized image's colour channel c as a Plane, and the truth's channel c on
+// the same scale (x * (2^bits - 1)).
+Plane channel_plane(const ref::QuantImage& img, int c);
+Plane channel_plane(const ref::Image& img, int c, double full_scale);
+
+// The double image as an ideal card would output it: each channel rounded to
+// the nearest of `bits` bits (for measuring the float reference's own sampling
+// error on the same scale as the design's).
+ref::QuantImage quantize(const ref::Image& img, int bits);
 
 // Heat map of the largest channel error per pixel: black = 0, through red and
 // yellow to white at `full_scale_lsb` LSBs and above.
