@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
+#include "cosim/heidelberg.hpp"
 #include "cosim/image_io.hpp"
 #include "cosim/warnings.hpp"
 #include "refmodel/error.hpp"
@@ -66,6 +67,7 @@ nlohmann::json accuracy_json(const Accuracy& a) {
 }  // namespace
 
 CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
+  if (scene.algorithm == ref::Algorithm::Heidelberg) return run_cosim_heidelberg(scene, out_dir);
   CosimResult r;
   std::filesystem::create_directories(out_dir);
   const SceneVolume sv = load_scene_volume(scene);
@@ -202,6 +204,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir) {
 }
 
 void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r) {
+  if (scene.algorithm == ref::Algorithm::Heidelberg)
+    return print_cosim_summary_heidelberg(os, scene, r);
   const Accuracy& a = r.accuracy;
   const auto rate = [](std::uint64_t n, double s) {
     return s > 0 ? static_cast<double>(n) / s / 1e6 : 0.0;
