@@ -259,6 +259,23 @@ TEST(VirimFixedPoint, HlsEqualsBitTrueOnEveryPixelOfTheShippedScene) {
   EXPECT_GE(a.pct_within_1lsb, floor.pct_within_1lsb);
 }
 
+TEST(VirimFixedPoint, HlsEqualsBitTrueWithTrilinearCropAndZoom) {
+  // Trilinear weights, software-set bounds inside the cube (reads outside give
+  // 0), zoom below 1 (the cube smaller than the view) and a stereo eye.
+  ref::Scene s = shipped("heidelberg.toml", {"render.width=48", "render.height=40",
+                                             "heidelberg.depth=56", "heidelberg.zoom=0.8",
+                                             "heidelberg.interpolation=trilinear",
+                                             "volume.source=\"phantom:shepp-logan?size=48\""});
+  s.volume.crop = ref::Crop{{4, 6, 0}, {40, 47, 30}};
+  const cosim::SceneVolume sv = cosim::load_scene_volume(s);
+  const bittrue::VirimSetup setup = bittrue::make_virim_setup(HP, s, sv.volume, -2.0);
+  const bittrue::VirimMemory mem = bittrue::make_virim_memory(sv.volume);
+  hls::virim::MemoryStats ms;
+  ASSERT_EQ(cosim::hls_render_heidelberg(setup, mem, 2, &ms).pixels,
+            bittrue::bt_render_heidelberg(setup, mem, 1).pixels);
+  EXPECT_GT(ms.out_of_bounds, 0u);
+}
+
 TEST(VirimFixedPoint, HlsEqualsBitTrueOnColin27) {
   const std::string path = "/usr/share/mricron/templates/ch2.nii.gz";
   ref::Scene s = shipped("heidelberg.toml", {"render.width=96", "render.height=8",
