@@ -36,6 +36,9 @@ void time_frames(const std::function<std::uint64_t()>& frame, int repeats, Bench
 std::vector<BenchResult> run_bench(const ref::Scene& scene, const std::vector<std::string>& engines,
                                    int repeats) {
   if (repeats < 1) throw Error("bench: --repeat must be at least 1");
+  if (scene.algorithm != ref::Algorithm::Raycast)
+    throw Error("bench measures the ray caster only; render.algorithm = \"heidelberg\" is not "
+                "benchmarked yet");
   const SceneVolume sv = load_scene_volume(scene);
   const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
   const ref::RenderInputs in = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
+#include "cosim/heidelberg.hpp"
 #include "cosim/image_io.hpp"
 #include "cosim/warnings.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
@@ -135,6 +136,7 @@ const char* to_string(Engine e) {
 }
 
 RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) {
+  if (scene.algorithm == ref::Algorithm::Heidelberg) return run_render_heidelberg(scene, options);
   RenderSummary s;
   for (const std::string& out : options.outputs) check_image_path(out);
   const auto t_load = Clock::now();

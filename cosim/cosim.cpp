@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
+#include "cosim/heidelberg.hpp"
 #include "cosim/image_io.hpp"
 #include "cosim/warnings.hpp"
 #include "refmodel/error.hpp"
@@ -71,6 +72,7 @@ nlohmann::json accuracy_json(const Accuracy& a) {
 
 CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
                       const TruthSettings& truth_settings) {
+  if (scene.algorithm == ref::Algorithm::Heidelberg) return run_cosim_heidelberg(scene, out_dir);
   CosimResult r;
   r.truth = truth_settings;
   check_truth_settings(truth_settings, scene);
@@ -222,6 +224,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
 }
 
 void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r) {
+  if (scene.algorithm == ref::Algorithm::Heidelberg)
+    return print_cosim_summary_heidelberg(os, scene, r);
   const Accuracy& a = r.accuracy;
   const auto rate = [](std::uint64_t n, double s) {
     return s > 0 ? static_cast<double>(n) / s / 1e6 : 0.0;

@@ -5,12 +5,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
+#include "cosim/heidelberg.hpp"
+#include "refmodel/render/heidelberg/heidelberg.hpp"
 #include "cosim/metrics.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
@@ -43,6 +46,10 @@ AccuracyFloor accuracy_floor(const std::string& profile) {
   // a few LSB on shaded surfaces are the design's, not a fault: it is held to
   // a PSNR floor that catches breakage, not to a pixel share.
   if (profile == "vizard2") return {30.0, 0.0};
+  // VIRIM (docs/heidelberg.md §9): 6-bit weight addressing leaves errors of
+  // a few LSB where densities change sharply: the shipped scene has 97% of
+  // its pixels within 1 LSB at 56.7 dB, a 64-voxel version of it 92%.
+  if (profile == "virim") return {50.0, 90.0};
   return {50.0, 99.0};
 }
 
@@ -62,21 +69,37 @@ std::string golden_path(const RegressOptions& o, const std::string& scene, const
 CaseResult run_case(const RegressOptions& o, const ref::Scene& scene, const SceneVolume& sv,
                     const std::string& scene_name, const std::string& profile, std::ostream& os) {
   CaseResult r;
-  check_fixed_point(scene, sv, true);
-  const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
-  const ref::RenderInputs in = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
-  const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
-  const bittrue::VoxelMemory memory =
-      bittrue::make_voxel_memory(scene.precision, sv.volume, sv.gradients);
-  const ref::QuantImage hls = hls_render_image(setup, memory, scene.render.threads);
-  const ref::QuantImage bt = bittrue::bt_render_image(setup, memory, scene.render.threads);
+  ref::QuantImage hls, bt;
+  std::function<ref::Image()> render_truth;
+  if (scene.algorithm == ref::Algorithm::Heidelberg) {
+    // VIRIM (docs/heidelberg.md): one eye, hls/virim == bit-true.
+    const double eye = ref::heidelberg::eye_offsets(scene.heidelberg).front();
+    const bittrue::VirimSetup setup =
+        bittrue::make_virim_setup(bittrue::heidelberg_profile(scene), scene, sv.volume, eye);
+    const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
+    hls = hls_render_heidelberg(setup, memory, scene.render.threads);
+    bt = bittrue::bt_render_heidelberg(setup, memory, scene.render.threads);
+    render_truth = [&scene, &sv, eye] {
+      return ref::heidelberg::render(scene, sv.volume, eye, scene.render.threads);
+    };
+  } else {
+    check_fixed_point(scene, sv, true);
+    const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
+    const ref::RenderInputs in = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
+    const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
+    const bittrue::VoxelMemory memory =
+        bittrue::make_voxel_memory(scene.precision, sv.volume, sv.gradients);
+    hls = hls_render_image(setup, memory, scene.render.threads);
+    bt = bittrue::bt_render_image(setup, memory, scene.render.threads);
+    render_truth = [in, &scene] { return ref::render_image(in, scene.render.threads); };
+  }
   r.bit_exact = hls.pixels == bt.pixels;
   r.hash = image_hash(hls);
   const std::string gpath = golden_path(o, scene_name, profile);
 
   std::ostringstream extra;
   if (o.bless) {
-    const ref::Image truth = ref::render_image(in, scene.render.threads);
+    const ref::Image truth = render_truth();
     const Accuracy a = measure_accuracy(hls, truth);
     const AccuracyFloor floor = accuracy_floor(profile);
     extra << std::fixed << std::setprecision(2) << "  PSNR " << a.psnr_db << " dB, "
@@ -141,6 +164,12 @@ int run_regress(const RegressOptions& o, std::ostream& os) {
     // One volume load per scene, shared by its profiles.
     const ref::Scene base = ref::load_scene_file(path.string(), o.overrides);
     const SceneVolume sv = load_scene_volume(base);
+    if (base.algorithm == ref::Algorithm::Heidelberg) {
+      // VIRIM's widths are its own profile ("virim"), not the ray caster's presets.
+      failed += run_case(o, base, sv, name, "virim", os).failed ? 1 : 0;
+      ++cases;
+      continue;
+    }
     for (const std::string& profile : o.profiles) {
       std::vector<std::string> sets = o.overrides;
       sets.push_back("precision.profile=" + profile);

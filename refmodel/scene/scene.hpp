@@ -87,6 +87,34 @@ struct RtlDesc {
   int queue_depth = 8;                 // controller request queue per DIMM
   int return_depth = 8;                // controller read-data return FIFO per DIMM
 };
+// --- VIRIM: the Heidelberg Raytracing Model (docs/heidelberg.md) ----------------
+enum class Algorithm { Raycast, Heidelberg };
+enum class HeidelbergInterpolation { Gaussian, Trilinear };
+enum class HeidelbergGradient { Sobel2D, Sobel3D };
+
+// [heidelberg]: the rotator's view transform and the slice model's parameters.
+struct HeidelbergDesc {
+  // The four user weights (VIRIM's reflection parameters, section "User Interface").
+  double diffuse_0 = 0.6;    // diffuse scattering of the 0 deg light
+  double diffuse_45 = 0.4;   // diffuse scattering of the 45 deg light
+  double specular_45 = 0.4;  // specular scattering of the 45 deg light (x surface probability)
+  double luminosity = 0.2;   // self-luminosity, proportional to the local light
+  double light = 1.0;        // intensity of both parallel lights entering the cube
+  int shininess = 8;         // Phong exponent of the specular term
+  double background_threshold = 0.95;  // light leaving a line's far end above this: background
+  HeidelbergInterpolation interpolation = HeidelbergInterpolation::Gaussian;
+  double gaussian_sigma = 0.5;  // width of the Gaussian mask, in voxels
+  int weight_bits = 6;          // weight-ROM address bits per coordinate (VIRIM: 6)
+  HeidelbergGradient gradient = HeidelbergGradient::Sobel2D;
+  glm::dvec3 axis{0.0, 0.0, 1.0};  // rotation axis, volume axes
+  double angle_deg = 0.0;          // rotation about `axis` through the volume centre
+  glm::dvec3 translation{0.0};     // view-space shift of the cube, voxels
+  double zoom = 1.0;
+  double perspective = 0.0;  // eye distance from the cube centre in voxels; 0 = parallel
+  int depth = 0;             // voxels along the view (y); 0 = the volume's largest dimension
+  double stereo_deg = 0.0;   // 0 = mono; VIRIM: 4 (two images 4 deg apart)
+};
+const char* to_string(Algorithm a);
 
 struct Scene {
   std::string origin = "scene";  // file path or "default scene", for messages
@@ -102,6 +130,9 @@ struct Scene {
   std::string precision_name = "balanced";  // the preset, plus "+overrides" if any
   PrecisionProfile precision;
   RtlDesc rtl;  // [rtl]: the cycle model's card configuration
+  // VIRIM (render.algorithm, [heidelberg]).
+  Algorithm algorithm = Algorithm::Raycast;
+  HeidelbergDesc heidelberg;
 };
 
 const char* to_string(Projection p);

@@ -26,7 +26,8 @@ std::vector<std::string> precision_keys() {
 // docs/scenes.md documents each of these (tests/refmodel/test_scene.cpp checks).
 const std::map<std::string, std::vector<std::string>>& schema() {
   static const std::map<std::string, std::vector<std::string>> s = {
-      {"", {"volume", "classification", "camera", "render", "lights", "precision", "rtl"}},
+      {"", {"volume", "classification", "camera", "render", "lights", "precision", "rtl",
+            "heidelberg"}},
       {"rtl", {"scheduler", "reorder_window", "starvation_limit", "refresh", "refresh_postpone",
                "sdram", "layout", "brick", "traversal", "tile", "ray_slots", "issue_burst",
                "sample_buffer", "queue_depth", "return_depth"}},
@@ -38,8 +39,13 @@ const std::map<std::string, std::vector<std::string>>& schema() {
       {"camera", {"projection", "eye", "center", "up", "fov_deg", "height", "stereo_deg", "path"}},
       {"camera.path[]", {"eye", "center", "up"}},
       {"render", {"width", "height", "mode", "oversampling", "ert_threshold", "background",
-                  "frames", "threads"}},
+                  "frames", "threads", "algorithm"}},
       {"lights[]", {"type", "direction", "intensity"}},
+      // VIRIM (docs/heidelberg.md).
+      {"heidelberg", {"diffuse_0", "diffuse_45", "specular_45", "luminosity", "light",
+                      "shininess", "background_threshold", "interpolation", "gaussian_sigma",
+                      "weight_bits", "gradient", "axis", "angle_deg", "translation", "zoom",
+                      "perspective", "depth", "stereo_deg"}},
   };
   return s;
 }
@@ -451,6 +457,35 @@ void read_lights(const TableReader& root, std::vector<Light>& lights) {
   }
 }
 
+// --- [heidelberg] and render.algorithm (VIRIM, docs/heidelberg.md) ---
+void read_heidelberg(const TableReader& r, HeidelbergDesc& h) {
+  h.diffuse_0 = r.number("diffuse_0", h.diffuse_0, 0.0, 1.0);
+  h.diffuse_45 = r.number("diffuse_45", h.diffuse_45, 0.0, 1.0);
+  h.specular_45 = r.number("specular_45", h.specular_45, 0.0, 1.0);
+  h.luminosity = r.number("luminosity", h.luminosity, 0.0, 1.0);
+  h.light = r.number("light", h.light, 0.0, 1.0, true, false);
+  h.shininess = r.integer("shininess", h.shininess, 1, 127);
+  h.background_threshold = r.number("background_threshold", h.background_threshold, 0.0, 1.0);
+  h.interpolation = r.string("interpolation", "gaussian", {"gaussian", "trilinear"}) == "trilinear"
+                        ? HeidelbergInterpolation::Trilinear
+                        : HeidelbergInterpolation::Gaussian;
+  h.gaussian_sigma = r.number("gaussian_sigma", h.gaussian_sigma, 0.1, 4.0);
+  h.weight_bits = r.integer("weight_bits", h.weight_bits, 1, 8);
+  h.gradient = r.string("gradient", "2d", {"2d", "3d"}) == "3d" ? HeidelbergGradient::Sobel3D
+                                                                : HeidelbergGradient::Sobel2D;
+  h.axis = r.vec3("axis", h.axis, -1e6, 1e6);
+  if (h.axis.x == 0 && h.axis.y == 0 && h.axis.z == 0) r.fail("axis", "is the zero vector");
+  h.angle_deg = r.number("angle_deg", h.angle_deg, -3600.0, 3600.0);
+  h.translation = r.vec3("translation", h.translation, -1e4, 1e4);
+  h.zoom = r.number("zoom", h.zoom, 1.0 / 16.0, 16.0);
+  h.depth = r.integer("depth", h.depth, 0, 4096);
+  h.perspective = r.number("perspective", h.perspective, 0.0, 1e6);
+  if (h.perspective > 0.0 && h.depth > 0 && h.perspective <= 0.5 * h.depth)
+    r.fail("perspective", "= " + fmt(h.perspective) +
+                              " must exceed half of heidelberg.depth (the eye is outside the cube)");
+  h.stereo_deg = r.number("stereo_deg", h.stereo_deg, 0.0, 30.0);
+}
+
 void read_precision(const TableReader& r, Scene& s) {
   std::vector<std::string> presets = preset_names();
   const std::string name = r.string("profile", "balanced", presets);
@@ -525,11 +560,20 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   s.base_dir = base_dir;
   const TableReader top(&root, "", "", origins);
   if (!top.has("volume")) top.fail("volume", "table is required (volume.source)");
-  if (!top.has("camera")) top.fail("camera", "table is required (camera.eye, camera.center)");
+  // VIRIM: a Heidelberg scene's view is the rotator's ([heidelberg]); the camera is optional.
+  s.algorithm = top.table("render").string("algorithm", "raycast", {"raycast", "heidelberg"}) ==
+                        "heidelberg"
+                    ? Algorithm::Heidelberg
+                    : Algorithm::Raycast;
+  if (top.has("heidelberg") && s.algorithm != Algorithm::Heidelberg)
+    top.fail("heidelberg", "applies only with render.algorithm = \"heidelberg\"");
+  read_heidelberg(top.table("heidelberg"), s.heidelberg);
+  if (!top.has("camera") && s.algorithm == Algorithm::Raycast)
+    top.fail("camera", "table is required (camera.eye, camera.center)");
   if (!top.has("classification")) top.fail("classification", "table is required");
   read_volume(top.table("volume"), s.volume);
   read_classification(top.table("classification"), s);
-  read_camera(top.table("camera"), s.camera);
+  if (top.has("camera")) read_camera(top.table("camera"), s.camera);
   read_render(top.table("render"), s.render);
   read_lights(top, s.lights);
   read_precision(top.table("precision"), s);
@@ -559,6 +603,28 @@ toml::table pose_table(const CameraPose& p) {
                      {"up", to_array(p.up)}};
 }
 }  // namespace
+
+// VIRIM: render.algorithm and [heidelberg]; a Heidelberg scene's camera is not
+// written when it was not given (its default pose is not a valid view).
+static void heidelberg_to_toml(const Scene& s, toml::table& root) {
+  const HeidelbergDesc& h = s.heidelberg;
+  root["render"].as_table()->insert_or_assign("algorithm", "heidelberg");
+  if (s.camera.pose.eye == s.camera.pose.center) root.erase("camera");
+  root.insert_or_assign(
+      "heidelberg",
+      toml::table{{"diffuse_0", h.diffuse_0}, {"diffuse_45", h.diffuse_45},
+                  {"specular_45", h.specular_45}, {"luminosity", h.luminosity},
+                  {"light", h.light}, {"shininess", h.shininess},
+                  {"background_threshold", h.background_threshold},
+                  {"interpolation", h.interpolation == HeidelbergInterpolation::Trilinear
+                                        ? "trilinear" : "gaussian"},
+                  {"gaussian_sigma", h.gaussian_sigma}, {"weight_bits", h.weight_bits},
+                  {"gradient", h.gradient == HeidelbergGradient::Sobel3D ? "3d" : "2d"},
+                  {"axis", to_array(h.axis)}, {"angle_deg", h.angle_deg},
+                  {"translation", to_array(h.translation)}, {"zoom", h.zoom},
+                  {"perspective", h.perspective}, {"depth", h.depth},
+                  {"stereo_deg", h.stereo_deg}});
+}
 
 std::string scene_to_toml(const Scene& s) {
   toml::table volume{{"source", s.volume.source},
@@ -636,13 +702,18 @@ std::string scene_to_toml(const Scene& s) {
                         {"sample_buffer", d.sample_buffer},
                         {"queue_depth", d.queue_depth},
                         {"return_depth", d.return_depth}};
-  const toml::table root{{"volume", volume}, {"classification", classification},
+  toml::table root{{"volume", volume}, {"classification", classification},
                          {"camera", camera}, {"render", render},
                          {"lights", lights}, {"precision", precision},
                          {"rtl", rtl}};
+  if (s.algorithm == Algorithm::Heidelberg) heidelberg_to_toml(s, root);
   std::ostringstream os;
   os << root << "\n";
   return os.str();
+}
+
+const char* to_string(Algorithm a) {
+  return a == Algorithm::Heidelberg ? "heidelberg" : "raycast";
 }
 
 std::vector<std::string> known_scene_keys() {

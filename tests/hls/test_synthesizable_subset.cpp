@@ -147,8 +147,8 @@ TEST(SynthesizableSubset, KernelsUseOnlyTheSubset) {
   // with ap_fixed (types.hpp).
   const std::filesystem::path dir = std::filesystem::path(VOXCAST_SOURCE_DIR) / "hls";
   int checked = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    const std::string name = entry.path().lexically_relative(dir).string();
     if (entry.path().extension() != ".hpp" || name == "fixed_point.hpp") continue;
     std::ifstream in(entry.path());
     std::stringstream text;

@@ -1,0 +1,263 @@
+#include "cosim/heidelberg.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/engines.hpp"
+#include "cosim/image_io.hpp"
+#include "cosim/metrics.hpp"
+#include "hls/virim/host.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/parallel.hpp"
+#include "refmodel/render/heidelberg/heidelberg.hpp"
+#include "refmodel/scene/scene_toml.hpp"
+
+namespace voxcast::cosim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+template <HeidelbergProfile HP>
+ref::QuantImage render_hls(const bittrue::VirimSetup& s, const bittrue::VirimMemory& m,
+                           int threads, hls::virim::MemoryStats* stats) {
+  const auto frame = hls::virim::host::load_virim_frame<HP>(s);
+  const std::uint16_t* banks[16];
+  hls::virim::host::bank_pointers(m, banks);
+  ref::QuantImage img(s.W, s.H, HP.out_bits);
+  const auto full = static_cast<std::uint32_t>(img.full_scale());
+  std::vector<hls::virim::MemoryStats> line_stats(static_cast<std::size_t>(s.H));
+  ref::parallel_for(
+      s.H,
+      [&](int k) {
+        std::vector<std::uint32_t> level(static_cast<std::size_t>(s.W));
+        std::unique_ptr<bool[]> bg(new bool[static_cast<std::size_t>(s.W)]);
+        hls::virim::virim_frame<HP>(frame.get(), banks, k, k + 1, level.data(), bg.get(),
+                                    &line_stats[static_cast<std::size_t>(k)]);
+        for (int x = 0; x < s.W; ++x) {
+          const std::uint32_t v = level[static_cast<std::size_t>(x)];
+          img.at(x, s.H - 1 - k) = bg[static_cast<std::size_t>(x)]
+                                       ? std::array<std::uint32_t, 4>{0, 0, 0, 0}
+                                       : std::array<std::uint32_t, 4>{v, v, v, full};
+        }
+      },
+      threads);
+  if (stats) {
+    *stats = {};
+    for (const auto& l : line_stats) {
+      stats->accesses += l.accesses;
+      stats->suppressed += l.suppressed;
+      stats->out_of_bounds += l.out_of_bounds;
+      stats->bank_reads[0] += l.bank_reads[0];
+      stats->bank_reads[1] += l.bank_reads[1];
+    }
+  }
+  return img;
+}
+
+std::string with_suffix(const std::string& path, const std::string& suffix) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+void check_hls(const HeidelbergProfile& p) {
+  if (!hls_supports_heidelberg(p))
+    throw Error("heidelberg.weight_bits = " + std::to_string(p.weight_bits) +
+                " is not compiled into the hls engine (compiled: " +
+                hls::virim::host::kCompiledHeidelbergProfiles + "); use the bittrue engine");
+}
+
+}  // namespace
+
+bool hls_supports_heidelberg(const HeidelbergProfile& p) {
+  return hls::virim::host::dispatch_heidelberg_profile(p, []<HeidelbergProfile>() {});
+}
+
+ref::QuantImage hls_render_heidelberg(const bittrue::VirimSetup& setup,
+                                      const bittrue::VirimMemory& memory, int threads,
+                                      hls::virim::MemoryStats* stats) {
+  check_hls(setup.profile);
+  ref::QuantImage img;
+  hls::virim::host::dispatch_heidelberg_profile(setup.profile, [&]<HeidelbergProfile HP>() {
+    img = render_hls<HP>(setup, memory, threads, stats);
+  });
+  return img;
+}
+
+RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions& options) {
+  if (options.engine == Engine::Rtl)
+    throw Error("the rtl engine does not model VIRIM (render.algorithm = \"heidelberg\") yet: "
+                "use ref, bittrue or hls");
+  RenderSummary s;
+  for (const std::string& out : options.outputs) check_image_path(out);
+  const auto t_load = Clock::now();
+  const SceneVolume sv = load_scene_volume(scene);
+  s.load_seconds = seconds_since(t_load);
+  s.volume_source = sv.volume.source;
+  s.dims = sv.volume.dims;
+  s.bits = sv.volume.bits;
+  s.threads = ref::worker_count(scene.render.threads);
+  s.engine = options.engine;
+  const HeidelbergProfile profile = bittrue::heidelberg_profile(scene);
+  if (options.engine == Engine::Hls) check_hls(profile);
+  const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
+  for (const std::string& out : options.outputs) {
+    const std::filesystem::path dir = std::filesystem::path(out).parent_path();
+    if (!dir.empty()) std::filesystem::create_directories(dir);
+  }
+  const std::vector<double> eyes = ref::heidelberg::eye_offsets(scene.heidelberg);
+  const auto t_render = Clock::now();
+  for (std::size_t e = 0; e < eyes.size(); ++e) {
+    ref::Image img;
+    if (options.engine == Engine::Ref) {
+      img = ref::heidelberg::render(scene, sv.volume, eyes[e], scene.render.threads);
+    } else {
+      const bittrue::VirimSetup setup =
+          bittrue::make_virim_setup(profile, scene, sv.volume, eyes[e]);
+      img = (options.engine == Engine::Hls
+                 ? hls_render_heidelberg(setup, memory, scene.render.threads)
+                 : bittrue::bt_render_heidelberg(setup, memory, scene.render.threads))
+                .to_image();
+    }
+    s.stats.rays += static_cast<std::uint64_t>(img.width) * static_cast<std::uint64_t>(img.height);
+    s.stats.rays_hit += s.stats.rays;
+    const std::string suffix = eyes.size() == 1 ? "" : (e == 0 ? "_left" : "_right");
+    for (const std::string& out : options.outputs) {
+      const std::string path = with_suffix(out, suffix);
+      write_image(path, img, scene.render.background);
+      s.written.push_back(path);
+    }
+  }
+  s.render_seconds = seconds_since(t_render);
+  if (!options.report_json.empty()) {
+    nlohmann::json j;
+    j["scene"] = scene.origin;
+    j["algorithm"] = "heidelberg";
+    j["engine"] = to_string(s.engine);
+    j["volume"] = {{"source", s.volume_source}, {"dims", s.dims}, {"bits", s.bits}};
+    j["image"] = {{"width", scene.render.width}, {"height", scene.render.height}};
+    j["timing"] = {{"load_seconds", s.load_seconds}, {"render_seconds", s.render_seconds},
+                   {"threads", s.threads}};
+    j["written"] = s.written;
+    std::ofstream out(options.report_json);
+    if (!out) throw Error(options.report_json + ": cannot write the report");
+    out << j.dump(2) << "\n";
+    s.written.push_back(options.report_json);
+  }
+  return s;
+}
+
+CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out_dir) {
+  CosimResult r;
+  std::filesystem::create_directories(out_dir);
+  const SceneVolume sv = load_scene_volume(scene);
+  const HeidelbergProfile profile = bittrue::heidelberg_profile(scene);
+  r.hls_ran = hls_supports_heidelberg(profile);
+  const int threads = scene.render.threads;
+  const double eye = ref::heidelberg::eye_offsets(scene.heidelberg).front();
+
+  auto t0 = Clock::now();
+  const ref::Image truth = ref::heidelberg::render(scene, sv.volume, eye, threads);
+  r.seconds_float = seconds_since(t0);
+  const bittrue::VirimSetup setup = bittrue::make_virim_setup(profile, scene, sv.volume, eye);
+  const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
+  t0 = Clock::now();
+  const ref::QuantImage bt = bittrue::bt_render_heidelberg(setup, memory, threads);
+  r.seconds_bittrue = seconds_since(t0);
+  ref::QuantImage hls = bt;
+  hls::virim::MemoryStats ms;
+  if (r.hls_ran) {
+    t0 = Clock::now();
+    hls = hls_render_heidelberg(setup, memory, threads, &ms);
+    r.seconds_hls = seconds_since(t0);
+  }
+  const std::uint64_t voxels = static_cast<std::uint64_t>(setup.W) * static_cast<std::uint64_t>(setup.D) *
+                               static_cast<std::uint64_t>(setup.H);
+  r.samples_float = r.samples_hls = voxels;
+  r.bit_exact = !r.hls_ran || hls.pixels == bt.pixels;
+  r.rtl_exact = true;  // not modelled for this path
+  if (!r.bit_exact) {
+    Mismatch& m = r.mismatch;
+    for (m.y = 0; m.y < hls.height; ++m.y) {
+      for (m.x = 0; m.x < hls.width && hls.at(m.x, m.y) == bt.at(m.x, m.y); ++m.x) {}
+      if (m.x < hls.width) break;
+    }
+    m.reproducer = (std::filesystem::path(out_dir) / "reproducer.toml").string();
+    std::ofstream out(m.reproducer);
+    out << "# voxcast cosim reproducer: hls and bit-true differ at pixel (" << m.x << ", " << m.y
+        << ") of the Heidelberg path.\n"
+        << ref::scene_to_toml(scene);
+    r.written.push_back(m.reproducer);
+  }
+  r.accuracy = measure_accuracy(hls, truth);
+
+  const ref::Image hls_img = hls.to_image();
+  ref::Image diff(truth.width, truth.height);
+  for (std::size_t i = 0; i < diff.pixels.size(); ++i) diff.pixels[i] = hls_img.pixels[i] - truth.pixels[i];
+  const auto path = [&](const char* name) { return (std::filesystem::path(out_dir) / name).string(); };
+  write_exr_layers(path("layers.exr"), {{"float", &truth}, {"hls", &hls_img}, {"diff", &diff}});
+  write_image(path("float.png"), truth, scene.render.background);
+  if (r.hls_ran) write_image(path("hls.png"), hls_img, scene.render.background);
+  write_image(path("bittrue.png"), bt.to_image(), scene.render.background);
+  write_image(path("diff.png"), error_heat_map(hls, truth, 4.0), glm::dvec3(0.0));
+  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png"})
+    if (r.hls_ran || std::string(f) != "hls.png") r.written.push_back(path(f));
+
+  nlohmann::json j;
+  j["scene"] = scene.origin;
+  j["algorithm"] = "heidelberg";
+  j["bit_exact"] = r.hls_ran ? nlohmann::json(r.bit_exact) : nlohmann::json(nullptr);
+  j["engines"] = r.hls_ran ? nlohmann::json{"float", "bittrue", "hls"}
+                           : nlohmann::json{"float", "bittrue"};
+  j["rtl"] = "not modelled for the Heidelberg path";
+  j["weight_bits"] = profile.weight_bits;
+  j["psnr_db"] = std::isfinite(r.accuracy.psnr_db) ? nlohmann::json(r.accuracy.psnr_db)
+                                                   : nlohmann::json("inf");
+  j["max_abs_err_lsb"] = r.accuracy.max_abs_err_lsb;
+  j["mean_abs_err_lsb"] = r.accuracy.mean_abs_err_lsb;
+  j["rms_err_lsb"] = r.accuracy.rms_err_lsb;
+  j["pct_within_1lsb"] = r.accuracy.pct_within_1lsb;
+  j["worst_pixel"] = {r.accuracy.worst_x, r.accuracy.worst_y};
+  if (r.hls_ran)
+    j["memory"] = {{"accesses", ms.accesses}, {"suppressed", ms.suppressed},
+                   {"out_of_bounds", ms.out_of_bounds},
+                   {"bank_reads", {ms.bank_reads[0], ms.bank_reads[1]}}};
+  if (!r.bit_exact)
+    j["mismatch"] = {{"pixel", {r.mismatch.x, r.mismatch.y}}, {"reproducer", r.mismatch.reproducer}};
+  j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls}};
+  std::ofstream out(path("report.json"));
+  if (!out) throw Error(path("report.json") + ": cannot write the report");
+  out << j.dump(2) << "\n";
+  r.written.push_back(path("report.json"));
+  return r;
+}
+
+void print_cosim_summary_heidelberg(std::ostream& os, const ref::Scene& scene,
+                                    const CosimResult& r) {
+  const Accuracy& a = r.accuracy;
+  os << std::fixed << std::setprecision(2);
+  os << "scene      " << scene.origin << " (Heidelberg model, " << scene.render.width << "x"
+     << scene.render.height << ", weight_bits " << scene.heidelberg.weight_bits << ")\n"
+     << "bit-exact  "
+     << (!r.hls_ran ? "not checked: the hls engine is not compiled for this profile"
+                    : r.bit_exact ? "yes: hls == bit-true on every pixel (no rtl model of VIRIM)"
+                                  : "NO")
+     << "\n"
+     << "accuracy   " << (r.hls_ran ? "hls" : "bit-true") << " vs float: PSNR " << a.psnr_db
+     << " dB, max " << a.max_abs_err_lsb << " LSB, rms " << std::setprecision(3) << a.rms_err_lsb
+     << " LSB, " << std::setprecision(2) << a.pct_within_1lsb << "% of pixels within 1 LSB\n"
+     << "seconds    float " << r.seconds_float << ", bit-true " << r.seconds_bittrue << ", hls "
+     << r.seconds_hls << "\n";
+  for (const std::string& w : r.written) os << "wrote      " << w << "\n";
+}
+
+}  // namespace voxcast::cosim

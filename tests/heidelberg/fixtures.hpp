@@ -1,0 +1,44 @@
+// Volumes and scenes with closed-form answers for VIRIM's tests.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <random>
+
+#include "refmodel/scene/scene.hpp"
+#include "refmodel/volume/volume.hpp"
+
+namespace voxcast::test {
+
+inline ref::Volume make_volume(int nx, int ny, int nz, int bits,
+                               const std::function<std::uint16_t(int, int, int)>& f) {
+  ref::Volume v;
+  v.dims = {nx, ny, nz};
+  v.bits = bits;
+  v.source = "test volume";
+  v.data.resize(v.voxel_count());
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) v.data[v.index(x, y, z)] = f(x, y, z);
+  return v;
+}
+
+inline ref::Volume random_volume(int nx, int ny, int nz, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> d(0, 255);
+  return make_volume(nx, ny, nz, 8, [&](int, int, int) { return static_cast<std::uint16_t>(d(rng)); });
+}
+
+// A Heidelberg scene whose LUT is the identity ramp: density = value / 255.
+inline ref::Scene heidelberg_scene(int W, int D, int H) {
+  ref::Scene s;
+  s.algorithm = ref::Algorithm::Heidelberg;
+  s.tf_points = {ref::TfPoint{0.0, {1.0, 1.0, 1.0}, 0.0}, ref::TfPoint{255.0, {1.0, 1.0, 1.0}, 1.0}};
+  s.render.width = W;
+  s.render.height = H;
+  s.heidelberg.depth = D;
+  s.render.threads = 1;
+  return s;
+}
+
+}  // namespace voxcast::test
