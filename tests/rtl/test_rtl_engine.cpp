@@ -129,6 +129,11 @@ TEST(RtlEngine, EveryOrganisationGivesTheSameImage) {
          c.mapping.brick = {4, 2, 8};
        }},
       {"morton", [](rtl::RtlConfig& c) { c.mapping.name = "morton"; }},
+      {"bricked-swizzled, lookahead",
+       [](rtl::RtlConfig& c) {
+         c.mapping.name = "bricked-swizzled";
+         c.scheduler = "lookahead";
+       }},
       {"round robin", [](rtl::RtlConfig& c) { c.pipeline.issue_burst = 1; }},
       {"1 ray slot", [](rtl::RtlConfig& c) { c.pipeline.ray_slots = 1; }},
       {"tiny buffers",
