@@ -27,7 +27,7 @@ using pipeline::RtlStats;
 
 struct RtlConfig {
   pipeline::PipelineConfig pipeline;  // ray slots, traversal, latencies, DIMM and controller
-  layout::MappingSpec mapping;        // "linear" (the baseline), "bricked", "morton"
+  layout::MappingSpec mapping;        // "linear" (the baseline), "bricked", "bricked-swizzled", "morton"
   std::string scheduler = "in-order"; // sched::make_scheduler
   std::string refresh = "eager";      // sched::make_refresh_policy
 };

@@ -535,7 +535,7 @@ const std::vector<std::string>& rtl_choices(const std::string& key) {
       {"scheduler", {"in-order", "fr-fcfs", "lookahead"}},
       {"refresh", {"eager"}},
       {"sdram", {"pc100-cl2", "pc100-cl3"}},
-      {"layout", {"linear", "bricked", "morton"}},
+      {"layout", {"linear", "bricked", "bricked-swizzled", "morton"}},
       {"traversal", {"scanline", "tiles"}},
   };
   static const std::vector<std::string> none;

@@ -49,14 +49,19 @@ void check_fits(std::string_view mapping, std::uint64_t index_space, const sdram
   }
 }
 
-std::vector<std::string> mapping_names() { return {"linear", "bricked", "morton"}; }
+std::vector<std::string> mapping_names() {
+  return {"linear", "bricked", "bricked-swizzled", "morton"};
+}
 
 std::unique_ptr<AddressMapping> make_address_mapping(const MappingSpec& spec, const WordGrid& grid,
                                                      const sdram::Geometry& geometry) {
   if (spec.name == "linear") return std::make_unique<LinearMapping>(grid, geometry);
   if (spec.name == "bricked") return std::make_unique<BrickedMapping>(grid, geometry, spec.brick);
+  if (spec.name == "bricked-swizzled")
+    return std::make_unique<BrickedMapping>(grid, geometry, spec.brick, true);
   if (spec.name == "morton") return std::make_unique<MortonMapping>(grid, geometry);
-  throw Error("unknown address mapping '" + spec.name + "' (known: linear, bricked, morton)");
+  throw Error("unknown address mapping '" + spec.name +
+              "' (known: linear, bricked, bricked-swizzled, morton)");
 }
 
 }  // namespace voxcast::rtl::layout

@@ -4,6 +4,7 @@
 // address mappers):
 //   linear_mapping.hpp   x fastest, then y2, then z2 (the card's obvious layout)
 //   bricked_mapping.hpp  bricks of bx x by x bz words, each brick contiguous
+//                        (and bricked-swizzled: banks rotated per brick y + z)
 //   morton_mapping.hpp   Z-order (bit-interleaved x, y2, z2)
 // Every implementation turns a coordinate into a DIMM-local word index and
 // splits it with split_row_bank_column(): column bits lowest, bank bits next,
@@ -82,7 +83,7 @@ class AddressMapping {
 
 // The runtime choice of a mapping.
 struct MappingSpec {
-  std::string name = "linear";                  // "linear", "bricked", "morton"
+  std::string name = "linear";                  // "linear", "bricked", "bricked-swizzled", "morton"
   std::array<std::uint32_t, 3> brick{8, 8, 8};  // bricked: words per brick edge (powers of two)
 };
 

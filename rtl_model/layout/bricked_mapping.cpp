@@ -8,8 +8,8 @@
 namespace voxcast::rtl::layout {
 
 BrickedMapping::BrickedMapping(const WordGrid& grid, const sdram::Geometry& geometry,
-                               std::array<std::uint32_t, 3> brick)
-    : AddressMapping(grid, geometry) {
+                               std::array<std::uint32_t, 3> brick, bool swizzle)
+    : AddressMapping(grid, geometry), swizzle_(swizzle) {
   const std::uint32_t n[3] = {grid.nx, grid.ny2, grid.nz2};
   std::uint64_t space = 1;
   for (std::size_t k = 0; k < 3; ++k) {
@@ -32,7 +32,20 @@ std::uint64_t BrickedMapping::index(const WordCoord& c) const {
     brick = brick * bricks_[i] + (v[i] >> shift_[i]);
     inner = (inner << shift_[i]) | (v[i] & ((1u << shift_[i]) - 1u));
   }
-  return (brick << (shift_[0] + shift_[1] + shift_[2])) | inner;
+  const std::uint32_t brick_bits = shift_[0] + shift_[1] + shift_[2];
+  const std::uint64_t i = (brick << brick_bits) | inner;
+  if (!swizzle_) return i;
+  // Rotate the bank field by (y + z) of the brick that starts the row group.
+  const sdram::Geometry& g = geometry();
+  const int cb = std::countr_zero(g.columns);
+  const int bb = std::countr_zero(g.banks);
+  const std::uint64_t row = i >> (cb + bb);
+  const std::uint64_t first = (row << (cb + bb)) >> brick_bits;
+  const std::uint64_t by = (first / bricks_[0]) % bricks_[1];
+  const std::uint64_t bz = first / (std::uint64_t{bricks_[0]} * bricks_[1]);
+  const std::uint64_t mask = g.banks - 1u;
+  const std::uint64_t bank = (((i >> cb) & mask) + by + bz) & mask;
+  return (i & ~(mask << cb)) | (bank << cb);
 }
 
 }  // namespace voxcast::rtl::layout

@@ -3,6 +3,16 @@
 // contiguously (x fastest inside), bricks in x-fastest order. A ray crossing
 // a brick in any direction stays in one row for about 8 word steps (16 voxels
 // in y and z, 8 in x), instead of streaming only along x.
+//
+// Swizzled ("bricked-swizzled"): the bank of every word is rotated by
+// (brick y + brick z) of the first brick of its row group, mod the banks.
+// With bricks of one row and a brick count along x that the banks divide
+// (8 x 8 x 8 words at 256^3), the next brick along y or z is then in the
+// next bank, as the next brick along x always is, so look-ahead activation
+// can open it while the current one streams (docs/performance.md §7); the
+// plain layout puts it in the same bank. The rotation depends on the row
+// only, so the mapping stays injective for any grid (permutation-based
+// interleaving, Zhang, Zhu and Zhang, MICRO 2000).
 #pragma once
 
 #include <array>
@@ -16,13 +26,14 @@ class BrickedMapping final : public AddressMapping {
  public:
   // Throws voxcast::Error unless every brick edge is a power of two.
   BrickedMapping(const WordGrid& grid, const sdram::Geometry& geometry,
-                 std::array<std::uint32_t, 3> brick);
-  std::string_view name() const override { return "bricked"; }
+                 std::array<std::uint32_t, 3> brick, bool swizzle = false);
+  std::string_view name() const override { return swizzle_ ? "bricked-swizzled" : "bricked"; }
   std::uint64_t index(const WordCoord& c) const override;
 
  private:
   std::array<std::uint32_t, 3> shift_{};  // log2 of the brick edges
   std::array<std::uint32_t, 3> bricks_{};  // bricks per axis (rounded up)
+  bool swizzle_ = false;
 };
 
 }  // namespace voxcast::rtl::layout

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "refmodel/error.hpp"
 #include "rtl_frames.hpp"
@@ -127,6 +129,11 @@ TEST(RtlEngine, EveryOrganisationGivesTheSameImage) {
          c.mapping.brick = {4, 2, 8};
        }},
       {"morton", [](rtl::RtlConfig& c) { c.mapping.name = "morton"; }},
+      {"bricked-swizzled, lookahead",
+       [](rtl::RtlConfig& c) {
+         c.mapping.name = "bricked-swizzled";
+         c.scheduler = "lookahead";
+       }},
       {"round robin", [](rtl::RtlConfig& c) { c.pipeline.issue_burst = 1; }},
       {"1 ray slot", [](rtl::RtlConfig& c) { c.pipeline.ray_slots = 1; }},
       {"tiny buffers",
@@ -181,6 +188,34 @@ TEST(RtlEngine, DeterministicCycles) {
   EXPECT_EQ(a.stats.row_hits(), b.stats.row_hits());
   EXPECT_EQ(a.stats.activates(), b.stats.activates());
   EXPECT_EQ(a.image.pixels, b.image.pixels);
+}
+
+// The host's thread count changes nothing: a scene asking for 1 or 4 worker
+// threads, and frames simulated concurrently on 3 host threads (as a sweep
+// would run them: no shared mutable state), give the same cycles, row
+// outcomes and pixels.
+TEST(RtlEngine, SameCyclesAndBitsForAnyHostThreadCount) {
+  const RtlFrame one = make_rtl_frame("shells", 20, 20, {"precision.profile=vizard2", "render.threads=1"});
+  const RtlFrame four = make_rtl_frame("shells", 20, 20, {"precision.profile=vizard2", "render.threads=4"});
+  rtl::RtlConfig c = rtl::vizard2_baseline();
+  c.scheduler = "lookahead";
+  const rtl::RtlResult ref = rtl::rtl_render(one.setup, one.memory, c);
+  const rtl::RtlResult b = rtl::rtl_render(four.setup, four.memory, c);
+  EXPECT_EQ(b.stats.cycles, ref.stats.cycles);
+  EXPECT_EQ(b.image.pixels, ref.image.pixels);
+  std::vector<rtl::RtlResult> parallel(3);
+  {
+    std::vector<std::thread> threads;
+    for (auto& r : parallel)
+      threads.emplace_back([&r, &four, &c] { r = rtl::rtl_render(four.setup, four.memory, c); });
+    for (auto& t : threads) t.join();
+  }
+  for (const rtl::RtlResult& r : parallel) {
+    EXPECT_EQ(r.stats.cycles, ref.stats.cycles);
+    EXPECT_EQ(r.stats.activates(), ref.stats.activates());
+    EXPECT_EQ(r.stats.row_hits(), ref.stats.row_hits());
+    EXPECT_EQ(r.image.pixels, ref.image.pixels);
+  }
 }
 
 // Fast-forward (skipping cycles in which nothing can move) and the

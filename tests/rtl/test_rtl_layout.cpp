@@ -202,7 +202,7 @@ TEST(AddressMapping, EveryMappingIsInjectiveAndInside) {
       rtl::layout::MappingSpec spec;
       spec.name = name;
       check_injective(*rtl::layout::make_address_mapping(spec, g, geo));
-      if (name == "bricked") {
+      if (name == "bricked" || name == "bricked-swizzled") {
         spec.brick = {4, 2, 1};
         check_injective(*rtl::layout::make_address_mapping(spec, g, geo));
       }
@@ -242,6 +242,36 @@ TEST(AddressMapping, VizardVolumeOnTheModule) {
   for (std::uint32_t z = 8; z < 16; ++z)
     for (std::uint32_t y = 0; y < 8; ++y)
       for (std::uint32_t x = 8; x < 16; ++x) ASSERT_EQ(mo->map({x, y, z}).row, mo->map({8, 0, 8}).row);
+}
+
+// Bricked 8x8x8 on the 256^3 volume: the next brick along x is in another
+// bank; along y and z in the same bank for the plain layout and in another
+// bank for the swizzled one (what look-ahead activation needs), with each
+// brick still one whole row.
+TEST(AddressMapping, SwizzledBricksPutEveryNeighbourBrickInAnotherBank) {
+  const auto geo = rtl::sdram::geometries::mt4lsdt864a();
+  const Vizard2Layout layout({256, 256, 256});
+  rtl::layout::MappingSpec plain, swizzled;
+  plain.name = "bricked";
+  swizzled.name = "bricked-swizzled";
+  const auto p = rtl::layout::make_address_mapping(plain, layout.grid(), geo);
+  const auto s = rtl::layout::make_address_mapping(swizzled, layout.grid(), geo);
+  const WordGrid& g = layout.grid();
+  int same_plain_yz = 0, checked = 0;
+  for (std::uint32_t z = 0; z + 8 < g.nz2; z += 8)
+    for (std::uint32_t y = 0; y + 8 < g.ny2; y += 8)
+      for (std::uint32_t x = 0; x + 8 < g.nx; x += 8) {
+        const rtl::sdram::Address a = s->map({x, y, z});
+        for (std::uint32_t k = 1; k < 8; k += 3)  // still one row per brick
+          ASSERT_EQ(s->map({x + k, y + k, z + k}).row, a.row);
+        ASSERT_NE(s->map({x + 8, y, z}).bank, a.bank) << x << " " << y << " " << z;
+        ASSERT_NE(s->map({x, y + 8, z}).bank, a.bank) << x << " " << y << " " << z;
+        ASSERT_NE(s->map({x, y, z + 8}).bank, a.bank) << x << " " << y << " " << z;
+        same_plain_yz += (p->map({x, y + 8, z}).bank == p->map({x, y, z}).bank) +
+                         (p->map({x, y, z + 8}).bank == p->map({x, y, z}).bank);
+        ++checked;
+      }
+  EXPECT_EQ(same_plain_yz, 2 * checked);
 }
 
 TEST(AddressMapping, RejectsWhatDoesNotFit) {

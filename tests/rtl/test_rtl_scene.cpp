@@ -81,7 +81,8 @@ TEST(RtlScene, BadValuesAreOneLineErrorsNamingKeyAndKnownValues) {
   EXPECT_NE(e.find("rtl.scheduler"), std::string::npos) << e;
   EXPECT_NE(e.find("\"in-order\", \"fr-fcfs\", \"lookahead\""), std::string::npos) << e;
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
-  EXPECT_NE(error_of({"rtl.layout=hilbert"}).find("\"linear\", \"bricked\", \"morton\""),
+  EXPECT_NE(error_of({"rtl.layout=hilbert"})
+                .find("\"linear\", \"bricked\", \"bricked-swizzled\", \"morton\""),
             std::string::npos);
   EXPECT_NE(error_of({"rtl.traversal=spiral"}).find("rtl.traversal"), std::string::npos);
   EXPECT_NE(error_of({"rtl.sdram=ddr4"}).find("\"pc100-cl2\", \"pc100-cl3\""), std::string::npos);
