@@ -9,6 +9,7 @@ VOXCAST_PACKAGES=(
   libgtest-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libnifti2-dev libgdcm-dev zlib1g-dev
   mricron-data gnuplot-nox
+  clang libclang-rt-14-dev
 )
 
 missing=()

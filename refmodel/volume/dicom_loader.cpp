@@ -146,6 +146,17 @@ class StructureWalk {
     return false;
   }
 
+  // The value representations of DICOM PS3.5 table 6.2-1.
+  static bool known_vr(const char* vr) {
+    static const char* const kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FL", "FD",
+                                       "IS", "LO", "LT", "OB", "OD", "OF", "OL", "OV", "OW",
+                                       "PN", "SH", "SL", "SQ", "SS", "ST", "SV", "TM", "UC",
+                                       "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+    for (const char* k : kVrs)
+      if (vr[0] == k[0] && vr[1] == k[1]) return true;
+    return false;
+  }
+
   // The file meta group (0002,xxxx): explicit VR little endian. Returns the
   // TransferSyntaxUID.
   std::string read_meta_group() {
@@ -153,6 +164,14 @@ class StructureWalk {
     while (pos_ + 8 <= b_.size() && u16(pos_, false) == 0x0002) {
       const std::uint32_t element = u16(pos_ + 2, false);
       const char vr[2] = {b_[pos_ + 4], b_[pos_ + 5]};
+      // GDCM aborts (an assert) on an unknown VR in the meta group (fuzz finding
+      // tests/fuzz_regress/data/dicom/meta_group_bad_vr.dcm).
+      if (!known_vr(vr)) {
+        char tag[16];
+        std::snprintf(tag, sizeof tag, "(0002,%04X)", element);
+        throw Broken{"element " + std::string(tag) + " at byte " + std::to_string(pos_) +
+                     " has no valid VR"};
+      }
       std::uint32_t length;
       if (long_length_vr(vr)) {
         need(12, 0x0002, element);
@@ -342,6 +361,14 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
     s.thickness = thickness.GetValue();
   }
   s.slope = image.GetSlope();
+  // GDCM reports a RescaleSlope of 0 as 1 (a silent reinterpretation: every
+  // voxel would be the intercept); the element itself decides (fuzz seed
+  // fuzz/corpus/dicom/broken_zero_slope.dcm).
+  if (ds.FindDataElement(gdcm::Tag(0x0028, 0x1053))) {
+    gdcm::Attribute<0x0028, 0x1053> slope;
+    slope.SetFromDataSet(ds);
+    if (slope.GetValue() == 0.0) s.slope = 0.0;
+  }
   s.intercept = image.GetIntercept();
   if (!std::isfinite(s.slope) || s.slope == 0.0 || !std::isfinite(s.intercept))
     throw Error(where + ": RescaleSlope " + num(s.slope) + " / RescaleIntercept " +
@@ -357,10 +384,19 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
                 " is not supported (need HighBit = BitsStored - 1)");
   const std::uint32_t value_mask = (std::uint32_t{1} << bits_stored) - 1;
   const std::uint32_t sign_bit = std::uint32_t{1} << (bits_stored - 1);
-  std::vector<char> buffer(image.GetBufferLength());
-  if (!image.GetBuffer(buffer.data())) throw Error(where + ": GDCM cannot decode its pixel data");
   const std::size_t count = static_cast<std::size_t>(s.columns) * static_cast<std::size_t>(s.rows);
   const std::size_t bytes = s.bits_allocated == 8 ? 1 : 2;
+  // Native (unencapsulated) pixel data shorter than Rows x Columns: GDCM's
+  // buffer has the size the header promises and GetBuffer still succeeds, so
+  // the missing pixels would be silently made up (fuzz finding
+  // tests/fuzz_regress/data/dicom/short_pixel_data.dcm).
+  if (const gdcm::ByteValue* native = ds.GetDataElement(gdcm::Tag(0x7fe0, 0x0010)).GetByteValue();
+      native && native->GetLength() < count * bytes)
+    throw Error(where + ": pixel data hold " + std::to_string(native->GetLength()) + " bytes, " +
+                std::to_string(s.columns) + "x" + std::to_string(s.rows) + " pixels need " +
+                std::to_string(count * bytes));
+  std::vector<char> buffer(image.GetBufferLength());
+  if (!image.GetBuffer(buffer.data())) throw Error(where + ": GDCM cannot decode its pixel data");
   if (buffer.size() < count * bytes)
     throw Error(where + ": pixel data hold " + std::to_string(buffer.size()) + " bytes, " +
                 std::to_string(s.columns) + "x" + std::to_string(s.rows) + " pixels need " +
