@@ -212,6 +212,15 @@ class StructureWalk {
       bool implicit_items = !explicit_vr_;
       if (explicit_vr_) {
         const char vr[2] = {b_[pos_ + 4], b_[pos_ + 5]};
+        // GDCM re-reads an element with an unknown VR as implicit VR, taking
+        // VR and length as a 32-bit length: gigabytes to allocate for a small
+        // file (fuzz finding tests/fuzz_regress/data/dicom/data_set_bad_vr.dcm).
+        if (!known_vr(vr)) {
+          char tag[16];
+          std::snprintf(tag, sizeof tag, "(%04X,%04X)", group, element);
+          throw Broken{"element " + std::string(tag) + " at byte " + std::to_string(pos_) +
+                       " has no valid VR"};
+        }
         if (long_length_vr(vr)) {
           need(12, group, element);
           length = u32(pos_ + 8, big_endian_);
