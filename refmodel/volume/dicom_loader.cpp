@@ -307,6 +307,27 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
     if (!part10) return false;  // not DICOM
     throw Error(where + ": truncated or corrupt DICOM file (" + broken + ")");
   }
+  // GDCM's image reader aborts (an assert) on SamplesPerPixel > 4: the element
+  // is checked on a plain parse first (fuzz finding
+  // tests/fuzz_regress/data/dicom/samples_per_pixel_huge.dcm).
+  {
+    std::istringstream pre(content);
+    gdcm::Reader plain;
+    plain.SetStream(pre);
+    if (plain.Read()) {
+      const gdcm::DataSet& pds = plain.GetFile().GetDataSet();
+      const gdcm::ByteValue* spp = pds.FindDataElement(gdcm::Tag(0x0028, 0x0002))
+                                       ? pds.GetDataElement(gdcm::Tag(0x0028, 0x0002)).GetByteValue()
+                                       : nullptr;
+      if (spp) {
+        std::uint16_t value = 0;
+        if (spp->GetLength() == 2) std::memcpy(&value, spp->GetPointer(), 2);
+        if (value != 1)
+          throw Error(where + ": SamplesPerPixel = " + std::to_string(value) +
+                      "; only greyscale slices are supported");
+      }
+    }
+  }
   std::istringstream stream(std::move(content));
   gdcm::ImageReader reader;
   reader.SetStream(stream);
