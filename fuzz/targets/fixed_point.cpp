@@ -1,5 +1,5 @@
 // Fuzz target: hls/fixed_point.hpp, differentially.
-//  1. Conversions into ~550 target types (10 formats x 7 quantization modes x the
+//  1. Conversions into 532 target types (10 formats x 7 quantization modes x the
 //     overflow modes SAT, SAT_ZERO, SAT_SYM, WRAP with N = 0, 1, 2 and WRAP_SM with
 //     N = 0, 1, 2), from any double (every bit pattern: NaN, inf, denormals, huge)
 //     and from the raw bits of four wide source types, against `model_bits`, an
