@@ -10,6 +10,7 @@ VOXCAST_PACKAGES=(
   libnifti2-dev libgdcm-dev zlib1g-dev
   mricron-data gnuplot-nox
   tcl
+  clang libclang-rt-14-dev
 )
 
 missing=()

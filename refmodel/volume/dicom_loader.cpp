@@ -146,6 +146,17 @@ class StructureWalk {
     return false;
   }
 
+  // The value representations of DICOM PS3.5 table 6.2-1.
+  static bool known_vr(const char* vr) {
+    static const char* const kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FL", "FD",
+                                       "IS", "LO", "LT", "OB", "OD", "OF", "OL", "OV", "OW",
+                                       "PN", "SH", "SL", "SQ", "SS", "ST", "SV", "TM", "UC",
+                                       "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+    for (const char* k : kVrs)
+      if (vr[0] == k[0] && vr[1] == k[1]) return true;
+    return false;
+  }
+
   // The file meta group (0002,xxxx): explicit VR little endian. Returns the
   // TransferSyntaxUID.
   std::string read_meta_group() {
@@ -153,6 +164,14 @@ class StructureWalk {
     while (pos_ + 8 <= b_.size() && u16(pos_, false) == 0x0002) {
       const std::uint32_t element = u16(pos_ + 2, false);
       const char vr[2] = {b_[pos_ + 4], b_[pos_ + 5]};
+      // GDCM aborts (an assert) on an unknown VR in the meta group (fuzz finding
+      // tests/fuzz_regress/data/dicom/meta_group_bad_vr.dcm).
+      if (!known_vr(vr)) {
+        char tag[16];
+        std::snprintf(tag, sizeof tag, "(0002,%04X)", element);
+        throw Broken{"element " + std::string(tag) + " at byte " + std::to_string(pos_) +
+                     " has no valid VR"};
+      }
       std::uint32_t length;
       if (long_length_vr(vr)) {
         need(12, 0x0002, element);
@@ -193,6 +212,15 @@ class StructureWalk {
       bool implicit_items = !explicit_vr_;
       if (explicit_vr_) {
         const char vr[2] = {b_[pos_ + 4], b_[pos_ + 5]};
+        // GDCM re-reads an element with an unknown VR as implicit VR, taking
+        // VR and length as a 32-bit length: gigabytes to allocate for a small
+        // file (fuzz finding tests/fuzz_regress/data/dicom/data_set_bad_vr.dcm).
+        if (!known_vr(vr)) {
+          char tag[16];
+          std::snprintf(tag, sizeof tag, "(%04X,%04X)", group, element);
+          throw Broken{"element " + std::string(tag) + " at byte " + std::to_string(pos_) +
+                       " has no valid VR"};
+        }
         if (long_length_vr(vr)) {
           need(12, group, element);
           length = u32(pos_ + 8, big_endian_);
@@ -279,6 +307,27 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
     if (!part10) return false;  // not DICOM
     throw Error(where + ": truncated or corrupt DICOM file (" + broken + ")");
   }
+  // GDCM's image reader aborts (an assert) on SamplesPerPixel > 4: the element
+  // is checked on a plain parse first (fuzz finding
+  // tests/fuzz_regress/data/dicom/samples_per_pixel_huge.dcm).
+  {
+    std::istringstream pre(content);
+    gdcm::Reader plain;
+    plain.SetStream(pre);
+    if (plain.Read()) {
+      const gdcm::DataSet& pds = plain.GetFile().GetDataSet();
+      const gdcm::ByteValue* spp = pds.FindDataElement(gdcm::Tag(0x0028, 0x0002))
+                                       ? pds.GetDataElement(gdcm::Tag(0x0028, 0x0002)).GetByteValue()
+                                       : nullptr;
+      if (spp) {
+        std::uint16_t value = 0;
+        if (spp->GetLength() == 2) std::memcpy(&value, spp->GetPointer(), 2);
+        if (value != 1)
+          throw Error(where + ": SamplesPerPixel = " + std::to_string(value) +
+                      "; only greyscale slices are supported");
+      }
+    }
+  }
   std::istringstream stream(std::move(content));
   gdcm::ImageReader reader;
   reader.SetStream(stream);
@@ -342,6 +391,14 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
     s.thickness = thickness.GetValue();
   }
   s.slope = image.GetSlope();
+  // GDCM reports a RescaleSlope of 0 as 1 (a silent reinterpretation: every
+  // voxel would be the intercept); the element itself decides (fuzz seed
+  // fuzz/corpus/dicom/broken_zero_slope.dcm).
+  if (ds.FindDataElement(gdcm::Tag(0x0028, 0x1053))) {
+    gdcm::Attribute<0x0028, 0x1053> slope;
+    slope.SetFromDataSet(ds);
+    if (slope.GetValue() == 0.0) s.slope = 0.0;
+  }
   s.intercept = image.GetIntercept();
   if (!std::isfinite(s.slope) || s.slope == 0.0 || !std::isfinite(s.intercept))
     throw Error(where + ": RescaleSlope " + num(s.slope) + " / RescaleIntercept " +
@@ -357,10 +414,19 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
                 " is not supported (need HighBit = BitsStored - 1)");
   const std::uint32_t value_mask = (std::uint32_t{1} << bits_stored) - 1;
   const std::uint32_t sign_bit = std::uint32_t{1} << (bits_stored - 1);
-  std::vector<char> buffer(image.GetBufferLength());
-  if (!image.GetBuffer(buffer.data())) throw Error(where + ": GDCM cannot decode its pixel data");
   const std::size_t count = static_cast<std::size_t>(s.columns) * static_cast<std::size_t>(s.rows);
   const std::size_t bytes = s.bits_allocated == 8 ? 1 : 2;
+  // Native (unencapsulated) pixel data shorter than Rows x Columns: GDCM's
+  // buffer has the size the header promises and GetBuffer still succeeds, so
+  // the missing pixels would be silently made up (fuzz finding
+  // tests/fuzz_regress/data/dicom/short_pixel_data.dcm).
+  if (const gdcm::ByteValue* native = ds.GetDataElement(gdcm::Tag(0x7fe0, 0x0010)).GetByteValue();
+      native && native->GetLength() < count * bytes)
+    throw Error(where + ": pixel data hold " + std::to_string(native->GetLength()) + " bytes, " +
+                std::to_string(s.columns) + "x" + std::to_string(s.rows) + " pixels need " +
+                std::to_string(count * bytes));
+  std::vector<char> buffer(image.GetBufferLength());
+  if (!image.GetBuffer(buffer.data())) throw Error(where + ": GDCM cannot decode its pixel data");
   if (buffer.size() < count * bytes)
     throw Error(where + ": pixel data hold " + std::to_string(buffer.size()) + " bytes, " +
                 std::to_string(s.columns) + "x" + std::to_string(s.rows) + " pixels need " +

@@ -129,7 +129,6 @@ void check_header(const std::string& path, const nifti_1_header& h) {
 // Step 2: the voxel data, exactly nvox values or an Error.
 template <typename T>
 std::vector<T> read_data(const std::string& path, const nifti_image& nim) {
-  std::vector<T> values(nim.nvox);
   const std::size_t bytes = nim.nvox * sizeof(T);
   std::unique_ptr<znzptr, ZnzClose> file(znzopen(nim.iname, "rb", nifti_is_gzfile(nim.iname)));
   if (!file) throw Error(std::string(nim.iname) + ": cannot open the image data for reading");
@@ -137,7 +136,20 @@ std::vector<T> read_data(const std::string& path, const nifti_image& nim) {
   if (znzseek(file.get(), nim.iname_offset, SEEK_SET) < 0)
     throw Error(unreadable(
         path, "truncated: the data should start at byte " + std::to_string(nim.iname_offset)));
-  const std::size_t got = znzread(values.data(), 1, bytes, file.get());
+  // The header's size is only a claim: the buffer grows as data arrive (16 MiB
+  // at a time), so a small file claiming 2^31 voxels is reported as truncated
+  // instead of allocating gigabytes first (fuzz finding
+  // tests/fuzz_regress/data/nifti/huge_dims_tiny_file.nii).
+  constexpr std::size_t kChunk = std::size_t{16} << 20;  // a multiple of sizeof(T)
+  std::vector<T> values;
+  std::size_t got = 0;
+  while (got < bytes) {
+    const std::size_t want = std::min(kChunk, bytes - got);
+    values.resize((got + want) / sizeof(T));
+    const std::size_t n = znzread(reinterpret_cast<char*>(values.data()) + got, 1, want, file.get());
+    got += std::min(n, want);
+    if (n != want) break;
+  }
   if (got != bytes)
     throw Error(unreadable(path, "truncated or corrupt data: " +
                                      (got > bytes ? std::string("a read error")
