@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "refmodel/error.hpp"
+#include "rtl_model/board/board.hpp"
+#include "rtl_model/board/board_config.hpp"
 #include "rtl_model/sched/registry.hpp"
 
 namespace voxcast::rtl {
@@ -22,16 +24,26 @@ const std::string& known(const char* key, const std::string& value,
   return value;
 }
 
-// The SDRAM grades the card can run at its 100 MHz clock (sdram/timing.hpp).
+// The card of the scene's board description: clocks, DIMMs and SDRAM timing.
+RtlConfig board_config(const std::string& name_or_path) {
+  try {
+    return rtl_config_for_board(board::load_board(name_or_path));
+  } catch (const Error& e) {
+    throw Error(std::string("rtl.board = \"") + name_or_path + "\": " + e.what());
+  }
+}
+
+// The SDRAM grades the card can run at its 100 MHz clock (sdram/timing.hpp),
+// overriding the board's datasheet timing.
 sdram::TimingNs sdram_preset(const std::string& name) {
-  known("sdram", name, {"pc100-cl2", "pc100-cl3"});
+  known("sdram", name, {"board", "pc100-cl2", "pc100-cl3"});
   return name == "pc100-cl2" ? sdram::presets::pc100_cl2() : sdram::presets::pc100_cl3();
 }
 
 }  // namespace
 
 RtlConfig rtl_config(const ref::RtlDesc& d) {
-  RtlConfig c = vizard2_baseline();
+  RtlConfig c = board_config(d.board);
   c.scheduler = known("scheduler", d.scheduler, sched::scheduler_names());
   c.refresh = known("refresh", d.refresh, sched::refresh_policy_names());
   c.mapping.name = known("layout", d.layout, layout::mapping_names());
@@ -51,7 +63,7 @@ RtlConfig rtl_config(const ref::RtlDesc& d) {
   p.controller.return_depth = static_cast<std::size_t>(d.return_depth);
   p.scheduler_params.reorder_window = d.reorder_window;
   p.scheduler_params.starvation_limit = d.starvation_limit;
-  p.dimm.timing = sdram_preset(d.sdram);
+  if (d.sdram != "board") p.dimm.timing = sdram_preset(d.sdram);
   p.dimm.refresh_postpone_limit = d.refresh_postpone;
   return c;
 }

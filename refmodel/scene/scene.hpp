@@ -76,7 +76,12 @@ struct RtlDesc {
   int starvation_limit = 64;           // fr-fcfs: hits that may bypass the oldest request
   std::string refresh = "eager";       // refresh policy
   int refresh_postpone = 0;            // REFs that may be postponed (DimmConfig)
-  std::string sdram = "pc100-cl2";     // timing preset (rtl_model/sdram/timing.hpp)
+  // The card: clocks, DIMM geometry and SDRAM timing come from this board
+  // description (constraints/boards/, docs/constraints.md), the one source the
+  // timing constraints are generated from too. A shipped name or a .toml path
+  // (relative paths resolved against the scene's folder by the reader).
+  std::string board = "vizard2_pci";
+  std::string sdram = "board";         // "board": the board's timing; else a preset overriding it
   std::string layout = "linear";       // address mapping inside the DIMMs
   std::array<int, 3> brick{8, 8, 8};   // bricked: words per brick edge (x, y/2, z/2)
   std::string traversal = "scanline";  // ray order: scanline | tiles

@@ -28,8 +28,8 @@ const std::map<std::string, std::vector<std::string>>& schema() {
   static const std::map<std::string, std::vector<std::string>> s = {
       {"", {"volume", "classification", "camera", "render", "lights", "precision", "rtl",
             "heidelberg"}},
-      {"rtl", {"scheduler", "reorder_window", "starvation_limit", "refresh", "refresh_postpone",
-               "sdram", "layout", "brick", "traversal", "tile", "ray_slots", "issue_burst",
+      {"rtl", {"board", "scheduler", "reorder_window", "starvation_limit", "refresh",
+               "refresh_postpone", "sdram", "layout", "brick", "traversal", "tile", "ray_slots", "issue_burst",
                "sample_buffer", "queue_depth", "return_depth"}},
       {"precision", precision_keys()},
       {"volume", {"source", "dims", "type", "spacing", "endian", "crop", "gradient"}},
@@ -501,7 +501,13 @@ void read_precision(const TableReader& r, Scene& s) {
 
 bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
-void read_rtl(const TableReader& r, RtlDesc& d) {
+void read_rtl(const TableReader& r, const std::string& base_dir, RtlDesc& d) {
+  d.board = r.string("board", d.board);
+  if (d.board.empty()) r.fail("board", "must name a shipped board or a .toml file");
+  // A board file, like a volume file, is relative to the scene's folder.
+  if (d.board.size() > 5 && d.board.compare(d.board.size() - 5, 5, ".toml") == 0 &&
+      std::filesystem::path(d.board).is_relative())
+    d.board = (std::filesystem::path(base_dir) / d.board).lexically_normal().string();
   d.scheduler = r.string("scheduler", d.scheduler, rtl_choices("scheduler"));
   d.reorder_window = r.integer("reorder_window", d.reorder_window, 1, 64);
   d.starvation_limit = r.integer("starvation_limit", d.starvation_limit, 0, 1 << 20);
@@ -534,7 +540,7 @@ const std::vector<std::string>& rtl_choices(const std::string& key) {
   static const std::map<std::string, std::vector<std::string>> choices = {
       {"scheduler", {"in-order", "fr-fcfs", "lookahead"}},
       {"refresh", {"eager"}},
-      {"sdram", {"pc100-cl2", "pc100-cl3"}},
+      {"sdram", {"board", "pc100-cl2", "pc100-cl3"}},
       {"layout", {"linear", "bricked", "bricked-swizzled", "morton"}},
       {"traversal", {"scanline", "tiles"}},
   };
@@ -577,7 +583,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   read_render(top.table("render"), s.render);
   read_lights(top, s.lights);
   read_precision(top.table("precision"), s);
-  read_rtl(top.table("rtl"), s.rtl);
+  read_rtl(top.table("rtl"), s.base_dir, s.rtl);
   if (!top.has("lights")) s.lights = {Light{}};  // one headlight of intensity 1
   return s;
 }
@@ -687,7 +693,8 @@ std::string scene_to_toml(const Scene& s) {
   for (const ProfileField& f : profile_fields())
     if (s.precision.*f.member != base.*f.member) precision.insert(f.name, s.precision.*f.member);
   const RtlDesc& d = s.rtl;
-  const toml::table rtl{{"scheduler", d.scheduler},
+  const toml::table rtl{{"board", d.board},
+                        {"scheduler", d.scheduler},
                         {"reorder_window", d.reorder_window},
                         {"starvation_limit", d.starvation_limit},
                         {"refresh", d.refresh},

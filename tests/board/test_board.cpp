@@ -2,6 +2,7 @@
 // cycle model configured from it (rtl_model/board/).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,7 +10,10 @@
 #include "refmodel/error.hpp"
 #include "rtl_model/board/board.hpp"
 #include "rtl_model/board/board_config.hpp"
+#include "refmodel/scene/scene_toml.hpp"
 #include "rtl_model/engine.hpp"
+#include "rtl_model/scene_config.hpp"
+#include "rtl_model/sdram/timing.hpp"
 
 namespace voxcast {
 namespace {
@@ -78,6 +82,53 @@ TEST(Board, BaselineIsTheBoard) {
   const auto pci = rtl::pci_config_for_board(b);
   EXPECT_EQ(pci.clock.period_ps(), 30'000);
   EXPECT_EQ(pci.bus_bytes, 4);
+}
+
+// The scene's rtl.board selects the description the model reads: a board file
+// whose SDRAM runs at 8 ns with CL3 gives the scene's model that clock and
+// ceil(ns / 8) cycles (tRCD 20 ns -> 3, tRC 70 ns -> 9), with the file named
+// relative to the scene's folder; rtl.sdram = "pc100-cl2" overrides the timing.
+TEST(Board, SceneBoardKeyDrivesTheModel) {
+  const auto dir = std::filesystem::temp_directory_path() / "voxcast_scene_board";
+  std::filesystem::create_directories(dir);
+  std::string text = board_with("vizard2_pci", "period_ns = 10.0", "period_ns = 8.0");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    text.replace(text.find(from), from.size(), to);
+  };
+  replace("tCK_min_ns = 10.0", "tCK_min_ns = 8.0");
+  replace("cas_latency = 2", "cas_latency = 3");
+  std::ofstream(dir / "fast.toml") << text;
+
+  const auto cycles = [](const rtl::RtlConfig& c) {
+    return rtl::sdram::to_cycles(c.pipeline.dimm.timing, c.pipeline.dimm.clock,
+                                 c.pipeline.dimm.burst_length);
+  };
+  const ref::Scene deflt = ref::default_scene();
+  EXPECT_EQ(deflt.rtl.board, "vizard2_pci");
+  EXPECT_EQ(cycles(rtl::rtl_config(deflt.rtl)).tRCD, 2);
+
+  const ref::Scene fast = ref::parse_scene(ref::default_scene_text(), (dir / "scene.toml").string(),
+                                           dir.string(), {"rtl.board=\"fast.toml\""});
+  EXPECT_EQ(fast.rtl.board, (dir / "fast.toml").string());
+  const rtl::RtlConfig c = rtl::rtl_config(fast.rtl);
+  EXPECT_DOUBLE_EQ(c.pipeline.dimm.clock.period_ns(), 8.0);
+  EXPECT_EQ(cycles(c).tRCD, 3);
+  EXPECT_EQ(cycles(c).tRC, 9);
+  EXPECT_EQ(cycles(c).CL, 3);
+
+  ref::RtlDesc preset = fast.rtl;
+  preset.sdram = "pc100-cl2";
+  EXPECT_EQ(rtl::rtl_config(preset).pipeline.dimm.timing.name,
+            rtl::sdram::presets::pc100_cl2().name);
+
+  ref::RtlDesc missing;
+  missing.board = "no_such_board";
+  try {
+    (void)rtl::rtl_config(missing);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("rtl.board = \"no_such_board\": ", 0), 0u) << e.what();
+  }
 }
 
 TEST(Board, ModernBoardIsDescribedButNotSimulated) {

@@ -2,8 +2,6 @@
 // errors, and the files it writes.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -11,25 +9,13 @@
 #include <string>
 
 #include "cosim/image_io.hpp"
+#include "tests/common/voxcast_cli.hpp"
 
 namespace {
 
-struct Command {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using voxcast::test::Command;
 
-Command run(const std::string& args) {
-  Command r;
-  const std::string cmd = std::string(VOXCAST_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+Command run(const std::string& args) { return voxcast::test::run_voxcast(args); }
 
 std::filesystem::path temp_dir(const std::string& name) {
   const auto d = std::filesystem::temp_directory_path() / ("voxcast_cli_" + name);

@@ -2,8 +2,6 @@
 // the JSON's totals, exit codes and one-line errors.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,24 +9,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/common/voxcast_cli.hpp"
+
 namespace {
 
-struct Command {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using voxcast::test::Command;
 
-Command run(const std::string& args) {
-  Command r;
-  const std::string cmd = std::string(VOXCAST_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+Command run(const std::string& args) { return voxcast::test::run_voxcast(args); }
 
 std::string scene(const char* name) { return std::string(VOXCAST_SOURCE_DIR) + "/scenes/" + name; }
 

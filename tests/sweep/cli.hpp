@@ -1,34 +1,20 @@
 // Running the `voxcast` command from the sweep tests, as users and scripts do.
 #pragma once
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "tests/common/voxcast_cli.hpp"
+
 namespace sweep_test {
 
-struct Command {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using voxcast::test::Command;
 
-// `prefix` goes before the program, e.g. "env PATH=/nonexistent".
 inline Command run(const std::string& args, const std::string& prefix = "") {
-  Command r;
-  const std::string cmd = prefix + " " + std::string(VOXCAST_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
+  return voxcast::test::run_voxcast(args, prefix);
 }
 
 inline std::filesystem::path temp_dir(const std::string& name) {
