@@ -298,7 +298,7 @@ void conversion_case(Bytes& in) {
   const auto& all = targets();
   const std::size_t pick = std::size_t{in.u8()} | (std::size_t{in.u8()} << 8);
   const Target& t = all[pick % all.size()];
-  const std::uint8_t kind = in.u8() % (kSources + 1);
+  const auto kind = static_cast<std::uint8_t>(in.u8() % (kSources + 1));
   if (kind == kSources) {
     const double d = in.f64();
     expect_bits(t.from_double(d), model_bits(model_value(d), true, t.fmt), t.fmt,
