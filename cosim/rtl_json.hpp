@@ -10,7 +10,8 @@
 namespace voxcast::cosim {
 
 inline nlohmann::json rtl_desc_json(const ref::RtlDesc& d) {
-  return {{"scheduler", d.scheduler},
+  return {{"board", d.board},
+          {"scheduler", d.scheduler},
           {"reorder_window", d.reorder_window},
           {"starvation_limit", d.starvation_limit},
           {"refresh", d.refresh},

@@ -7,21 +7,9 @@
 
 #include "refmodel/scene/scene.hpp"
 #include "refmodel/volume/volume.hpp"
+#include "tests/refmodel/render_fixtures.hpp"  // make_volume
 
 namespace voxcast::test {
-
-inline ref::Volume make_volume(int nx, int ny, int nz, int bits,
-                               const std::function<std::uint16_t(int, int, int)>& f) {
-  ref::Volume v;
-  v.dims = {nx, ny, nz};
-  v.bits = bits;
-  v.source = "test volume";
-  v.data.resize(v.voxel_count());
-  for (int z = 0; z < nz; ++z)
-    for (int y = 0; y < ny; ++y)
-      for (int x = 0; x < nx; ++x) v.data[v.index(x, y, z)] = f(x, y, z);
-  return v;
-}
 
 inline ref::Volume random_volume(int nx, int ny, int nz, unsigned seed) {
   std::mt19937 rng(seed);
