@@ -143,7 +143,7 @@ CaseResult run_case(const RegressOptions& o, const ref::Scene& scene, const Scen
     r.failed = golden != r.hash;
   }
   if (!r.bit_exact) r.failed = true;
-  os << std::left << std::setw(16) << scene_name << std::setw(10) << profile
+  os << std::left << std::setw(20) << scene_name << " " << std::setw(10) << profile
      << (r.bit_exact ? "bit-exact  " : "MISMATCH   ") << r.hash << "  " << r.status << extra.str()
      << "\n";
   return r;

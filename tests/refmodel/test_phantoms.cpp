@@ -40,7 +40,7 @@ std::string expect_error(const std::string& name, int size) {
 // --- all phantoms ---------------------------------------------------------------
 
 TEST(Phantoms, SharedMetadata) {
-  for (const std::string name : {"shepp-logan", "shells", "tube", "box"}) {
+  for (const std::string name : {"shepp-logan", "shells", "tube", "box", "grating"}) {
     const Volume v = make_phantom(name, 20);
     EXPECT_EQ(v.dims, (std::array<int, 3>{20, 20, 20})) << name;
     EXPECT_EQ(v.bits, 8) << name;
@@ -55,14 +55,14 @@ TEST(Phantoms, SharedMetadata) {
 }
 
 TEST(Phantoms, DeterministicAcrossCalls) {
-  for (const std::string name : {"shepp-logan", "shells", "tube", "box"})
+  for (const std::string name : {"shepp-logan", "shells", "tube", "box", "grating"})
     EXPECT_EQ(make_phantom(name, 33).data, make_phantom(name, 33).data) << name;
 }
 
 TEST(Phantoms, UnknownNameListsTheBuiltIns) {
   const std::string msg = expect_error("sphere", 64);
   EXPECT_NE(msg.find("'sphere'"), std::string::npos) << msg;
-  for (const char* name : {"shepp-logan", "shells", "tube", "box"})
+  for (const char* name : {"shepp-logan", "shells", "tube", "box", "grating"})
     EXPECT_NE(msg.find(name), std::string::npos) << msg;
 }
 
@@ -74,6 +74,28 @@ TEST(Phantoms, SizeOutsideRangeIsNamed) {
     EXPECT_NE(msg.find("2..1024"), std::string::npos) << msg;
   }
   EXPECT_NO_THROW(make_phantom("box", 2));
+}
+
+// --- grating ----------------------------------------------------------------------
+
+// 128 + 100 cos(2 pi x / 3) at integer x: cos is 1, -1/2, -1/2, so 228, 78, 78.
+TEST(GratingPhantom, PlanesRepeat228_78_78AlongXAndAreConstantInYAndZ) {
+  const Volume v = make_phantom("grating", 9);
+  constexpr std::uint16_t kPattern[3] = {228, 78, 78};
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 9; ++y)
+      for (int x = 0; x < 9; ++x) ASSERT_EQ(v.at(x, y, z), kPattern[x % 3]) << x << "," << y << "," << z;
+}
+
+// Partial volume averages over the voxel in x: the mean of cos over a whole
+// voxel of a period-3 wave is sinc(1/3) = (3/pi) sin(pi/3) = 0.82699 of the
+// point value, so 128 + 82.7 = 210.7 and 128 - 41.35 = 86.65, to within the
+// aa = 8 midpoint rule's error (< 0.5%) and rounding.
+TEST(GratingPhantom, PartialVolumeAttenuatesByTheVoxelSinc) {
+  const Volume v = make_phantom("grating", 6, 8);
+  EXPECT_NEAR(v.at(0, 2, 3), 210.7, 1.0);
+  EXPECT_NEAR(v.at(1, 2, 3), 86.65, 1.0);
+  EXPECT_NEAR(v.at(2, 2, 3), 86.65, 1.0);
 }
 
 // --- box --------------------------------------------------------------------------
