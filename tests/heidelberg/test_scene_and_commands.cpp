@@ -4,8 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
+#include <nlohmann/json.hpp>
+
+#include "cosim/bench.hpp"
 #include "cosim/commands.hpp"
+#include "cosim/cosim.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
@@ -90,6 +95,28 @@ TEST(HeidelbergCommands, RenderWritesAStereoPairWithEveryEngine) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/img_right.png"));
   }
   std::filesystem::remove_all(dir);
+}
+
+// cosim holds the cycle model to the hls pixels and reports its figures;
+// bench counts VIRIM's work in voxels (W x D x H) for every engine.
+TEST(HeidelbergCommands, CosimAndBenchRunTheCycleModel) {
+  const ref::Scene s = ref::parse_scene(kBase + "[heidelberg]\nangle_deg = 20\nmodules = 2\n",
+                                        "t.toml", ".");
+  const std::string dir = (std::filesystem::temp_directory_path() / "voxcast_heidelberg_cosim").string();
+  const cosim::CosimResult r = cosim::run_cosim(s, dir);
+  EXPECT_TRUE(r.bit_exact);
+  EXPECT_TRUE(r.rtl_exact);
+  EXPECT_GT(r.rtl_cycles, 0u);
+  std::ifstream in(dir + "/report.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["rtl_bit_exact"], true);
+  EXPECT_EQ(j["cycles"], r.rtl_cycles);
+  for (const char* key : {"fps", "ns_per_voxel", "stalls"}) EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["rtl"]["voxels"], 32 * 32 * 24);
+  EXPECT_EQ(j["rtl"]["config"]["modules"], 2);
+  std::filesystem::remove_all(dir);
+  for (const cosim::BenchResult& b : cosim::run_bench(s, {"hls", "rtl"}, 1))
+    EXPECT_EQ(b.samples, 32u * 32u * 24u) << b.engine;
 }
 
 }  // namespace
