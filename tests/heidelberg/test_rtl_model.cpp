@@ -263,6 +263,20 @@ std::string error_of(const Case& c, const VirimRtlConfig& cfg) {
   return "";
 }
 
+// render --engine rtl refuses an image that differs from the hls kernels'.
+TEST(VirimRtl, AMismatchWithHlsIsAnErrorNamingThePixel) {
+  ref::QuantImage a(5, 4, 8), b(5, 4, 8);
+  EXPECT_NO_THROW(cosim::check_rtl_matches_hls(a, b));
+  b.at(3, 2) = {1, 1, 1, 255};
+  b.at(1, 3) = {1, 1, 1, 255};
+  try {
+    cosim::check_rtl_matches_hls(a, b);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at pixel (3, 2)"), std::string::npos) << e.what();
+  }
+}
+
 TEST(VirimRtl, ImpossibleConfigurationsAreErrors) {
   const Case c = aligned(16, 12, 10);
   VirimRtlConfig cfg;
