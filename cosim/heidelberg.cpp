@@ -148,6 +148,9 @@ ref::QuantImage hls_render_heidelberg(const bittrue::VirimSetup& setup,
 }
 
 RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions& options) {
+  if (!options.vcd_path.empty() || !options.vcd_window.empty())
+    throw Error("--vcd and --vcd-window trace the ray caster's card; VIRIM's cycle model "
+                "(render.algorithm = \"heidelberg\") writes no trace");
   RenderSummary s;
   for (const std::string& out : options.outputs) check_image_path(out);
   const auto t_load = Clock::now();

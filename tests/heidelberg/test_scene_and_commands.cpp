@@ -94,6 +94,8 @@ TEST(HeidelbergCommands, RenderWritesAStereoPairWithEveryEngine) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/img_left.png"));
     EXPECT_TRUE(std::filesystem::exists(dir + "/img_right.png"));
   }
+  o.vcd_path = dir + "/t.vcd";  // a trace the VIRIM model does not write is an error, not ignored
+  EXPECT_THROW(cosim::run_render(s, o), Error);
   std::filesystem::remove_all(dir);
 }
 
