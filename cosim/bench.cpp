@@ -7,10 +7,13 @@
 
 #include "cosim/commands.hpp"
 #include "cosim/engines.hpp"
+#include "cosim/heidelberg.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
+#include "refmodel/render/heidelberg/heidelberg.hpp"
 #include "rtl_model/engine.hpp"
 #include "rtl_model/scene_config.hpp"
+#include "rtl_model/virim/engine.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -31,14 +34,43 @@ void time_frames(const std::function<std::uint64_t()>& frame, int repeats, Bench
   r.min_seconds = t.front();
 }
 
+// VIRIM: voxels rotated and traced per host second; the rtl engine's are
+// simulated voxels (its modules on the scene's threads).
+std::vector<BenchResult> run_bench_heidelberg(const ref::Scene& scene,
+                                              const std::vector<std::string>& engines, int repeats) {
+  const SceneVolume sv = load_scene_volume(scene);
+  const HeidelbergProfile profile = bittrue::heidelberg_profile(scene);
+  const double eye = ref::heidelberg::eye_offsets(scene.heidelberg).front();
+  const bittrue::VirimSetup setup = bittrue::make_virim_setup(profile, scene, sv.volume, eye);
+  const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
+  const std::uint64_t voxels = static_cast<std::uint64_t>(setup.W) *
+                               static_cast<std::uint64_t>(setup.D) *
+                               static_cast<std::uint64_t>(setup.H);
+  const int threads = scene.render.threads;
+  const rtl::virim::VirimRtlConfig rtl_config = rtl::virim::virim_rtl_config(scene.heidelberg);
+  std::vector<BenchResult> out;
+  for (const std::string& name : engines) {
+    const Engine e = parse_engine(name);
+    BenchResult r;
+    r.engine = name;
+    time_frames([&] {
+      if (e == Engine::Ref) ref::heidelberg::render(scene, sv.volume, eye, threads);
+      else if (e == Engine::BitTrue) bittrue::bt_render_heidelberg(setup, memory, threads);
+      else if (e == Engine::Hls) hls_render_heidelberg(setup, memory, threads);
+      else rtl::virim::virim_rtl_render(setup, memory, rtl_config, threads);
+      return voxels;
+    }, repeats, r);
+    out.push_back(r);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<BenchResult> run_bench(const ref::Scene& scene, const std::vector<std::string>& engines,
                                    int repeats) {
   if (repeats < 1) throw Error("bench: --repeat must be at least 1");
-  if (scene.algorithm != ref::Algorithm::Raycast)
-    throw Error("bench measures the ray caster only; render.algorithm = \"heidelberg\" is not "
-                "benchmarked yet");
+  if (scene.algorithm == ref::Algorithm::Heidelberg) return run_bench_heidelberg(scene, engines, repeats);
   const SceneVolume sv = load_scene_volume(scene);
   const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
   const ref::RenderInputs in = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
@@ -82,9 +114,12 @@ void print_bench(std::ostream& os, const ref::Scene& scene, const std::vector<Be
      << " " << ref::to_string(scene.render.mode) << ", oversampling " << scene.render.oversampling
      << ", profile " << scene.precision_name << ", " << ref::worker_count(scene.render.threads)
      << " threads)\n";
-  os << std::left << std::setw(10) << "engine" << std::right << std::setw(14) << "samples"
-     << std::setw(12) << "median s" << std::setw(12) << "min s" << std::setw(14) << "M samples/s"
-     << std::setw(12) << "ns/sample" << std::setw(10) << "vs ref\n";
+  // VIRIM's unit of work is a rotated and traced voxel.
+  const bool voxels = scene.algorithm == ref::Algorithm::Heidelberg;
+  os << std::left << std::setw(10) << "engine" << std::right << std::setw(14)
+     << (voxels ? "voxels" : "samples") << std::setw(12) << "median s" << std::setw(12) << "min s"
+     << std::setw(14) << (voxels ? "M voxels/s" : "M samples/s") << std::setw(12)
+     << (voxels ? "ns/voxel" : "ns/sample") << std::setw(10) << "vs ref\n";
   double ref_rate = 0.0;
   for (const BenchResult& r : rs)
     if (r.engine == "ref") ref_rate = r.samples_per_second();

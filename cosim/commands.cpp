@@ -226,7 +226,12 @@ void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummar
      << "rays     " << 100.0 * static_cast<double>(s.stats.rays_hit) / rays << "% hit the volume, "
      << 100.0 * static_cast<double>(s.stats.rays_terminated_early) / rays << "% terminated early, "
      << std::setprecision(1) << static_cast<double>(s.stats.samples) / 1e6 << " M samples\n";
-  if (s.engine == Engine::Rtl)
+  if (s.engine == Engine::Rtl && scene.algorithm == ref::Algorithm::Heidelberg)
+    os << std::setprecision(2) << "card     VIRIM, " << scene.heidelberg.modules
+       << " module(s): " << s.rtl_cycles << " cycles at " << scene.heidelberg.rotator_mhz
+       << " MHz (rotator): " << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample
+       << " ns/voxel; rtl == hls on every pixel\n";
+  else if (s.engine == Engine::Rtl)
     os << std::setprecision(2) << "card     " << s.rtl_cycles << " cycles at 100 MHz: "
        << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample << " ns/sample, row hit rate "
        << 100.0 * s.rtl_row_hit_rate << "%\n"

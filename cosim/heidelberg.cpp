@@ -18,6 +18,7 @@
 #include "refmodel/parallel.hpp"
 #include "refmodel/render/heidelberg/heidelberg.hpp"
 #include "refmodel/scene/scene_toml.hpp"
+#include "rtl_model/virim/engine.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -76,7 +77,60 @@ void check_hls(const HeidelbergProfile& p) {
                 hls::virim::host::kCompiledHeidelbergProfiles + "); use the bittrue engine");
 }
 
+// The first pixel (row-major) where two images differ, or false.
+bool first_difference(const ref::QuantImage& a, const ref::QuantImage& b, int& x, int& y) {
+  for (y = 0; y < a.height; ++y)
+    for (x = 0; x < a.width; ++x)
+      if (a.at(x, y) != b.at(x, y)) return true;
+  return false;
+}
+
+rtl::virim::VirimRtlResult run_rtl(const ref::Scene& scene, const bittrue::VirimSetup& setup,
+                                   const bittrue::VirimMemory& memory) {
+  return rtl::virim::virim_rtl_render(setup, memory,
+                                      rtl::virim::virim_rtl_config(scene.heidelberg),
+                                      scene.render.threads);
+}
+
 }  // namespace
+
+nlohmann::json virim_rtl_json(const ref::Scene& scene, const rtl::virim::VirimRtlStats& st) {
+  const ref::HeidelbergDesc& h = scene.heidelberg;
+  return {{"cycles", st.cycles},
+          {"fps", st.fps()},
+          {"frame_ms", st.frame_ns * 1e-6},
+          {"ns_per_voxel", st.ns_per_voxel()},
+          {"ns_per_sample", st.ns_per_voxel()},
+          {"voxels", st.voxels},
+          {"voxels_per_second", st.voxels_per_second()},
+          {"rotation_rate", st.rotation_rate()},
+          {"peak_rotation_rate", st.peak_rotation_rate()},
+          {"mean_access_ns", st.mean_access_ns()},
+          {"dsp_utilisation", st.dsp_utilisation()},
+          {"memory",
+           {{"unit_reads", st.unit_reads},
+            {"ram_reads", st.ram_reads},
+            {"suppressed", st.suppressed},
+            {"out_of_range", st.out_of_range},
+            {"bank_reads", {st.bank_reads[0], st.bank_reads[1]}}}},
+          {"stalls",
+           {{"rotator_bank_busy", st.stalls.rotator_bank_busy},
+            {"rotator_bus_full", st.stalls.rotator_bus_full},
+            {"bus_dsp_fifo_full", st.stalls.bus_dsp_fifo_full},
+            {"dsp_starved", st.stalls.dsp_starved}}},
+          {"config",
+           {{"modules", h.modules},
+            {"rotator_mhz", h.rotator_mhz},
+            {"dsp_mhz", h.dsp_mhz},
+            {"bus_mhz", h.bus_mhz}}}};
+}
+
+void check_rtl_matches_hls(const ref::QuantImage& rtl_img, const ref::QuantImage& hls_img) {
+  int x = 0, y = 0;
+  if (first_difference(rtl_img, hls_img, x, y))
+    throw Error("rtl engine: the VIRIM cycle model differs from the hls kernels at pixel (" +
+                std::to_string(x) + ", " + std::to_string(y) + ")");
+}
 
 bool hls_supports_heidelberg(const HeidelbergProfile& p) {
   return hls::virim::host::dispatch_heidelberg_profile(p, []<HeidelbergProfile>() {});
@@ -94,9 +148,9 @@ ref::QuantImage hls_render_heidelberg(const bittrue::VirimSetup& setup,
 }
 
 RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions& options) {
-  if (options.engine == Engine::Rtl)
-    throw Error("the rtl engine does not model VIRIM (render.algorithm = \"heidelberg\") yet: "
-                "use ref, bittrue or hls");
+  if (!options.vcd_path.empty() || !options.vcd_window.empty())
+    throw Error("--vcd and --vcd-window trace the ray caster's card; VIRIM's cycle model "
+                "(render.algorithm = \"heidelberg\") writes no trace");
   RenderSummary s;
   for (const std::string& out : options.outputs) check_image_path(out);
   const auto t_load = Clock::now();
@@ -108,7 +162,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
   s.threads = ref::worker_count(scene.render.threads);
   s.engine = options.engine;
   const HeidelbergProfile profile = bittrue::heidelberg_profile(scene);
-  if (options.engine == Engine::Hls) check_hls(profile);
+  if (options.engine == Engine::Hls || options.engine == Engine::Rtl) check_hls(profile);
   const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
   for (const std::string& out : options.outputs) {
     const std::filesystem::path dir = std::filesystem::path(out).parent_path();
@@ -116,6 +170,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
   }
   const std::vector<double> eyes = ref::heidelberg::eye_offsets(scene.heidelberg);
   const auto t_render = Clock::now();
+  rtl::virim::VirimRtlStats rtl_stats;  // the last eye's
   for (std::size_t e = 0; e < eyes.size(); ++e) {
     ref::Image img;
     if (options.engine == Engine::Ref) {
@@ -123,10 +178,21 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
     } else {
       const bittrue::VirimSetup setup =
           bittrue::make_virim_setup(profile, scene, sv.volume, eyes[e]);
-      img = (options.engine == Engine::Hls
-                 ? hls_render_heidelberg(setup, memory, scene.render.threads)
-                 : bittrue::bt_render_heidelberg(setup, memory, scene.render.threads))
-                .to_image();
+      if (options.engine == Engine::Rtl) {
+        // The cycle model, held to the hls kernels' pixels on every run.
+        const rtl::virim::VirimRtlResult r = run_rtl(scene, setup, memory);
+        check_rtl_matches_hls(r.image, hls_render_heidelberg(setup, memory, scene.render.threads));
+        rtl_stats = r.stats;
+        s.rtl_cycles += static_cast<double>(r.stats.cycles);
+        s.rtl_fps = r.stats.fps();
+        s.rtl_ns_per_sample = r.stats.ns_per_voxel();
+        img = r.image.to_image();
+      } else {
+        img = (options.engine == Engine::Hls
+                   ? hls_render_heidelberg(setup, memory, scene.render.threads)
+                   : bittrue::bt_render_heidelberg(setup, memory, scene.render.threads))
+                  .to_image();
+      }
     }
     s.stats.rays += static_cast<std::uint64_t>(img.width) * static_cast<std::uint64_t>(img.height);
     s.stats.rays_hit += s.stats.rays;
@@ -147,6 +213,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
     j["image"] = {{"width", scene.render.width}, {"height", scene.render.height}};
     j["timing"] = {{"load_seconds", s.load_seconds}, {"render_seconds", s.render_seconds},
                    {"threads", s.threads}};
+    if (s.engine == Engine::Rtl) j["rtl"] = virim_rtl_json(scene, rtl_stats);
     j["written"] = s.written;
     std::ofstream out(options.report_json);
     if (!out) throw Error(options.report_json + ": cannot write the report");
@@ -180,20 +247,32 @@ CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out
     hls = hls_render_heidelberg(setup, memory, threads, &ms);
     r.seconds_hls = seconds_since(t0);
   }
+  // The cycle model: the hls kernels' pixels, and the card's cycles.
+  rtl::virim::VirimRtlResult rtl_result;
+  if (r.hls_ran) {
+    t0 = Clock::now();
+    rtl_result = run_rtl(scene, setup, memory);
+    r.seconds_rtl = seconds_since(t0);
+    r.rtl_exact = rtl_result.image.pixels == hls.pixels;
+    r.rtl_cycles = rtl_result.stats.cycles;
+    r.rtl_fps = rtl_result.stats.fps();
+    r.rtl_ns_per_sample = rtl_result.stats.ns_per_voxel();
+  }
   const std::uint64_t voxels = static_cast<std::uint64_t>(setup.W) * static_cast<std::uint64_t>(setup.D) *
                                static_cast<std::uint64_t>(setup.H);
   r.samples_float = r.samples_hls = voxels;
-  r.bit_exact = !r.hls_ran || hls.pixels == bt.pixels;
-  r.rtl_exact = true;  // not modelled for this path
+  const bool hls_exact = !r.hls_ran || hls.pixels == bt.pixels;
+  r.bit_exact = hls_exact && r.rtl_exact;
   if (!r.bit_exact) {
+    // As for the ray caster: when hls agrees with bit-true, the cycle model is
+    // the one that differs.
     Mismatch& m = r.mismatch;
-    for (m.y = 0; m.y < hls.height; ++m.y) {
-      for (m.x = 0; m.x < hls.width && hls.at(m.x, m.y) == bt.at(m.x, m.y); ++m.x) {}
-      if (m.x < hls.width) break;
-    }
+    m.engine = hls_exact ? "rtl" : "hls";
+    first_difference(hls_exact ? rtl_result.image : hls, hls_exact ? hls : bt, m.x, m.y);
     m.reproducer = (std::filesystem::path(out_dir) / "reproducer.toml").string();
     std::ofstream out(m.reproducer);
-    out << "# voxcast cosim reproducer: hls and bit-true differ at pixel (" << m.x << ", " << m.y
+    out << "# voxcast cosim reproducer: " << m.engine << " and "
+        << (hls_exact ? "hls" : "bit-true") << " differ at pixel (" << m.x << ", " << m.y
         << ") of the Heidelberg path.\n"
         << ref::scene_to_toml(scene);
     r.written.push_back(m.reproducer);
@@ -216,9 +295,15 @@ CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out
   j["scene"] = scene.origin;
   j["algorithm"] = "heidelberg";
   j["bit_exact"] = r.hls_ran ? nlohmann::json(r.bit_exact) : nlohmann::json(nullptr);
-  j["engines"] = r.hls_ran ? nlohmann::json{"float", "bittrue", "hls"}
+  j["engines"] = r.hls_ran ? nlohmann::json{"float", "bittrue", "hls", "rtl"}
                            : nlohmann::json{"float", "bittrue"};
-  j["rtl"] = "not modelled for the Heidelberg path";
+  if (r.hls_ran) {
+    j["rtl_bit_exact"] = r.rtl_exact;
+    const nlohmann::json rj = virim_rtl_json(scene, rtl_result.stats);
+    for (const char* key : {"cycles", "fps", "ns_per_voxel", "ns_per_sample", "stalls"})
+      j[key] = rj[key];
+    j["rtl"] = rj;
+  }
   j["weight_bits"] = profile.weight_bits;
   j["psnr_db"] = std::isfinite(r.accuracy.psnr_db) ? nlohmann::json(r.accuracy.psnr_db)
                                                    : nlohmann::json("inf");
@@ -232,8 +317,11 @@ CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out
                    {"out_of_bounds", ms.out_of_bounds},
                    {"bank_reads", {ms.bank_reads[0], ms.bank_reads[1]}}};
   if (!r.bit_exact)
-    j["mismatch"] = {{"pixel", {r.mismatch.x, r.mismatch.y}}, {"reproducer", r.mismatch.reproducer}};
-  j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls}};
+    j["mismatch"] = {{"engine", r.mismatch.engine},
+                     {"pixel", {r.mismatch.x, r.mismatch.y}},
+                     {"reproducer", r.mismatch.reproducer}};
+  j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls},
+                  {"rtl", r.seconds_rtl}};
   std::ofstream out(path("report.json"));
   if (!out) throw Error(path("report.json") + ": cannot write the report");
   out << j.dump(2) << "\n";
@@ -249,14 +337,18 @@ void print_cosim_summary_heidelberg(std::ostream& os, const ref::Scene& scene,
      << scene.render.height << ", weight_bits " << scene.heidelberg.weight_bits << ")\n"
      << "bit-exact  "
      << (!r.hls_ran ? "not checked: the hls engine is not compiled for this profile"
-                    : r.bit_exact ? "yes: hls == bit-true on every pixel (no rtl model of VIRIM)"
+                    : r.bit_exact ? "yes: rtl == hls == bit-true on every pixel"
                                   : "NO")
      << "\n"
      << "accuracy   " << (r.hls_ran ? "hls" : "bit-true") << " vs float: PSNR " << a.psnr_db
      << " dB, max " << a.max_abs_err_lsb << " LSB, rms " << std::setprecision(3) << a.rms_err_lsb
      << " LSB, " << std::setprecision(2) << a.pct_within_1lsb << "% of pixels within 1 LSB\n"
      << "seconds    float " << r.seconds_float << ", bit-true " << r.seconds_bittrue << ", hls "
-     << r.seconds_hls << "\n";
+     << r.seconds_hls << ", rtl " << r.seconds_rtl << "\n";
+  if (r.hls_ran)
+    os << "card       " << r.rtl_cycles << " rotator cycles: " << r.rtl_fps << " frames/s, "
+       << r.rtl_ns_per_sample << " ns/voxel (" << scene.heidelberg.modules << " modules, rotator "
+       << scene.heidelberg.rotator_mhz << " MHz, DSP " << scene.heidelberg.dsp_mhz << " MHz)\n";
   for (const std::string& w : r.written) os << "wrote      " << w << "\n";
 }
 

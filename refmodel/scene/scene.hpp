@@ -118,6 +118,12 @@ struct HeidelbergDesc {
   double perspective = 0.0;  // eye distance from the cube centre in voxels; 0 = parallel
   int depth = 0;             // voxels along the view (y); 0 = the volume's largest dimension
   double stereo_deg = 0.0;   // 0 = mono; VIRIM: 4 (two images 4 deg apart)
+  // The rtl engine's VIRIM card (docs/virim-rtl.md): modules of 1 rotator + 16
+  // DSPs ("Four modules are required ... 256x256x128"), and its three clocks.
+  int modules = 4;
+  double rotator_mhz = 40.0;  // 160 M voxels/s over 4 modules at one voxel per clock
+  double dsp_mhz = 40.0;      // "Running at a speed of 40 MHz"
+  double bus_mhz = 40.0;      // 240 MB/s over the 48-bit (6-byte) bus
 };
 const char* to_string(Algorithm a);
 

@@ -45,7 +45,8 @@ const std::map<std::string, std::vector<std::string>>& schema() {
       {"heidelberg", {"diffuse_0", "diffuse_45", "specular_45", "luminosity", "light",
                       "shininess", "background_threshold", "interpolation", "gaussian_sigma",
                       "weight_bits", "gradient", "axis", "angle_deg", "translation", "zoom",
-                      "perspective", "depth", "stereo_deg"}},
+                      "perspective", "depth", "stereo_deg", "modules", "rotator_mhz",
+                      "dsp_mhz", "bus_mhz"}},
   };
   return s;
 }
@@ -484,6 +485,10 @@ void read_heidelberg(const TableReader& r, HeidelbergDesc& h) {
     r.fail("perspective", "= " + fmt(h.perspective) +
                               " must exceed half of heidelberg.depth (the eye is outside the cube)");
   h.stereo_deg = r.number("stereo_deg", h.stereo_deg, 0.0, 30.0);
+  h.modules = r.integer("modules", h.modules, 1, 64);
+  h.rotator_mhz = r.number("rotator_mhz", h.rotator_mhz, 1.0, 1000.0);
+  h.dsp_mhz = r.number("dsp_mhz", h.dsp_mhz, 1.0, 1000.0);
+  h.bus_mhz = r.number("bus_mhz", h.bus_mhz, 1.0, 1000.0);
 }
 
 void read_precision(const TableReader& r, Scene& s) {
@@ -629,7 +634,9 @@ static void heidelberg_to_toml(const Scene& s, toml::table& root) {
                   {"axis", to_array(h.axis)}, {"angle_deg", h.angle_deg},
                   {"translation", to_array(h.translation)}, {"zoom", h.zoom},
                   {"perspective", h.perspective}, {"depth", h.depth},
-                  {"stereo_deg", h.stereo_deg}});
+                  {"stereo_deg", h.stereo_deg}, {"modules", h.modules},
+                  {"rotator_mhz", h.rotator_mhz}, {"dsp_mhz", h.dsp_mhz},
+                  {"bus_mhz", h.bus_mhz}});
 }
 
 std::string scene_to_toml(const Scene& s) {

@@ -22,6 +22,7 @@
 #include "refmodel/bittrue/heidelberg.hpp"
 #include "refmodel/bittrue/quantize.hpp"
 #include "refmodel/render/heidelberg/heidelberg.hpp"
+#include "rtl_model/virim/engine.hpp"
 #include "tests/heidelberg/fixtures.hpp"
 
 namespace voxcast::test {
@@ -36,7 +37,7 @@ struct HeidelbergRun {
   bittrue::VirimSetup setup;
 };
 
-// One scene through the three engines; hls must equal bit-true on every pixel.
+// One scene through the engines; hls must equal bit-true, rtl hls on every pixel.
 HeidelbergRun run_engines(const ref::Scene& scene, const ref::Volume& volume) {
   HeidelbergRun r;
   r.ref = ref::heidelberg::render(scene, volume, 0.0, 1);
@@ -45,6 +46,10 @@ HeidelbergRun run_engines(const ref::Scene& scene, const ref::Volume& volume) {
   r.bt = bittrue::bt_render_heidelberg(r.setup, mem, 1);
   r.hls = cosim::hls_render_heidelberg(r.setup, mem, 1);
   EXPECT_EQ(r.hls.pixels, r.bt.pixels) << "hls differs from bit-true";
+  rtl::virim::VirimRtlConfig two_modules;  // VIRIM's cycle model on the same extremes
+  two_modules.modules = 2;
+  EXPECT_EQ(rtl::virim::virim_rtl_render(r.setup, mem, two_modules, 1).image.pixels, r.hls.pixels)
+      << "rtl differs from hls";
   return r;
 }
 
