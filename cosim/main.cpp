@@ -226,7 +226,10 @@ int main(int argc, char** argv) {
       "tune", "Cheapest precision widths (resource model) meeting a PSNR target (bit-true engine)");
   tune->add_option("scene", tune_scene, "Scene file (TOML)")->required();
   tune->add_option("--target-psnr", tune_opts.target_psnr_db, "Target PSNR in dB against the "
-                   "float reference")->required();
+                   "truth")->required();
+  tune->add_option("--truth-oversampling", tune_opts.truth.oversampling,
+                   "Oversampling of the truth (the float reference)")
+      ->capture_default_str();
   tune->add_option("--part", tune_opts.part, "Part whose capacity prices the resources")
       ->capture_default_str();
   tune->add_option("--vary", tune_vary, "Search axis FIELD=LO..HI (repeatable; default: "
