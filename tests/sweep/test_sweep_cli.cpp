@@ -244,6 +244,14 @@ TEST(Sweep, PartSelectsTheResourceColumnsPart) {
   const nlohmann::json k7 = json_of(d / "xc7k325t" / "results.json");
   EXPECT_GT(v2.at("rows")[0].at("cells").at("luts").get<double>(),
             k7.at("rows")[0].at("cells").at("luts").get<double>());
+  // Results for different parts are different sweeps: they do not merge.
+  const Command merge = run("sweep-merge " + (d / "xc2v3000").string() + " " +
+                            (d / "xc7k325t").string() + " --no-plots --out " +
+                            (d / "merged").string());
+  EXPECT_EQ(merge.status, 1);
+  EXPECT_NE(merge.output.find("(scene, --set, --vary, truth or --part differ)"),
+            std::string::npos)
+      << merge.output;
   const Command bad = run("sweep " + tiny_scene() + " --vary precision.weight_bits=5 --part " +
                           "xc9999 --out " + (d / "bad").string());
   EXPECT_EQ(bad.status, 1);
