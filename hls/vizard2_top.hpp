@@ -108,7 +108,8 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
         const ShadedColor<P> c = shade<P>(e, r, shaded);
         composite<P>(acc, c, e.alpha);
         tracer.sample(p, s, e, r, c, acc);
-      } else {  // c = U(colour): no intensity products (§6)
+      } else {  // c = U(colour) (§6): shaded is the constant false, so the
+                // intensity products inside shade() have no fan-out
         const ShadedColor<P> c = shade<P>(e, r, false);
         composite<P>(acc, c, e.alpha);
         tracer.sample(p, s, e, r, c, acc);
