@@ -93,6 +93,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   sweep->add_flag("--progress", sweep_opts.progress, "Progress on stderr even when not a TTY");
   sweep->add_flag("--no-plots", sweep_no_plots, "Do not run gnuplot");
+  std::string sweep_part = "xc7a200t";
+  sweep->add_option("--part", sweep_part, "Part of the resource columns (voxcast report's parts)")
+      ->capture_default_str();
   sweep->add_option("--truth-oversampling", sweep_truth.oversampling,
                     "Oversampling of the truth (the float reference)")
       ->capture_default_str();
@@ -223,7 +226,10 @@ int main(int argc, char** argv) {
       "tune", "Cheapest precision widths (resource model) meeting a PSNR target (bit-true engine)");
   tune->add_option("scene", tune_scene, "Scene file (TOML)")->required();
   tune->add_option("--target-psnr", tune_opts.target_psnr_db, "Target PSNR in dB against the "
-                   "float reference")->required();
+                   "truth")->required();
+  tune->add_option("--truth-oversampling", tune_opts.truth.oversampling,
+                   "Oversampling of the truth (the float reference)")
+      ->capture_default_str();
   tune->add_option("--part", tune_opts.part, "Part whose capacity prices the resources")
       ->capture_default_str();
   tune->add_option("--vary", tune_vary, "Search axis FIELD=LO..HI (repeatable; default: "
@@ -261,7 +267,8 @@ int main(int argc, char** argv) {
       namespace sw = voxcast::cosim::sweep;
       sweep_opts.shard = sw::parse_shard(sweep_shard);
       sweep_opts.plots = !sweep_no_plots;
-      const sw::Plan plan = sw::make_plan(sweep_scene, sweep_sets, sweep_vary, sweep_truth);
+      sw::Plan plan = sw::make_plan(sweep_scene, sweep_sets, sweep_vary, sweep_truth);
+      plan.part = sweep_part;
       sw::print_sweep_summary(std::cout, sw::run_sweep(plan, sweep_opts));
     } else if (*sweep_merge) {
       namespace sw = voxcast::cosim::sweep;

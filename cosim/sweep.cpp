@@ -74,14 +74,12 @@ std::vector<Cell> measure_rtl_cells(const PointContext& p) {
 }
 
 // The resource model of `voxcast report` (docs/resources.md) for the point's
-// elaborated design, on the sweep's reference part.
-constexpr const char* kSweepPart = "xc7a200t";
-
+// elaborated design, on the sweep's part (--part, checked by run_sweep).
 std::vector<Cell> measure_resource_cells(const PointContext& p) {
-  const Part& part = find_part(kSweepPart);
+  const Part& part = find_part(p.part);
   const ResourceReport r = estimate_resources(
       ref::elaborate(p.scene, p.volume.volume, p.volume.gradients), part);
-  return {Cell::num(r.total.luts), Cell::num(r.total.ffs), Cell::num(r.total.dsps),
+  return {Cell::txt(part.name), Cell::num(r.total.luts), Cell::num(r.total.ffs), Cell::num(r.total.dsps),
           Cell::num(r.total.brams), Cell::num(100.0 * cost(r.total, part))};
 }
 
@@ -164,7 +162,7 @@ PointOutcome run_point(const Plan& plan, std::size_t index, int threads, Caches&
     const bool hls = hls_supports(scene.precision);
     const ref::QuantImage design = hls ? hls_render_image(setup, memory, threads)
                                        : bittrue::bt_render_image(setup, memory, threads);
-    const PointContext ctx{scene, *sv, setup, memory, design, hls, *truth};
+    const PointContext ctx{scene, *sv, setup, memory, design, hls, *truth, plan.part};
     out.row.cells.push_back(Cell::txt("ok"));
     for (const ColumnGroup& g : column_groups()) {
       std::vector<Cell> cells = g.measure(ctx);
@@ -236,6 +234,7 @@ nlohmann::json sweep_meta(const Plan& plan, const Shard& shard) {
        {{"reference", "float"},
         {"oversampling", plan.truth.oversampling},
         {"ert_threshold", kTruthErtThreshold}}},
+      {"part", plan.part},
       {"rtl_config", "VIZARD II baseline: in-order open page, linear layout, scan-line order"}};
   if (shard.count > 1) m["shard"] = std::to_string(shard.index) + "/" + std::to_string(shard.count);
   return m;
@@ -297,12 +296,13 @@ const std::vector<ColumnGroup>& column_groups() {
         {"rtl_cycles", Kind::Number, "cycles", "the cycle model's cycles for the frame"}},
        measure_rtl_cells},
       {"resources",
-       {{"luts", Kind::Number, "LUT", "estimated LUTs (resource model, docs/resources.md)"},
+       {{"part", Kind::Text, "", "the part of the resource columns (--part)"},
+        {"luts", Kind::Number, "LUT", "estimated LUTs (resource model, docs/resources.md)"},
         {"ffs", Kind::Number, "FF", "estimated flip-flops"},
         {"dsps", Kind::Number, "DSP48E1", "DSP slices"},
         {"brams", Kind::Number, "RAMB18", "block RAMs"},
         {"part_pct", Kind::Number, "%",
-         "the scarcest resource's share of an XC7A200T (voxcast report's cost)"}},
+         "the part's share used: voxcast report's cost, the sum of the four resources' shares"}},
        measure_resource_cells},
   };
   return groups;
@@ -323,6 +323,11 @@ const std::vector<Front>& pareto_fronts() {
 SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   if (o.jobs < 1 || o.jobs > 256) throw Error("sweep: --jobs must be in [1, 256]");
   if (o.out_dir.empty()) throw Error("sweep: --out DIR is required");
+  try {
+    find_part(plan.part);
+  } catch (const Error& e) {
+    throw Error(std::string("sweep: --part: ") + e.what());
+  }
   std::filesystem::create_directories(o.out_dir);
   const auto t0 = Clock::now();
   std::vector<std::size_t> mine;

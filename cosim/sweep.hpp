@@ -38,6 +38,7 @@ struct PointContext {
   const ref::QuantImage& design;  // the accuracy engine's image
   bool design_is_hls;             // else bit-true
   const ref::Image& truth;
+  const std::string& part;  // the plan's part (resource columns)
 };
 
 // A group of columns measured per point. EXTENSION POINT: a further group (the

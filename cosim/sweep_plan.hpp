@@ -41,6 +41,7 @@ struct Plan {
   ref::Overrides sets;     // fixed --set overrides, applied before the axes
   std::vector<Axis> axes;  // the first varies slowest
   TruthSettings truth;
+  std::string part = "xc7a200t";  // the part of the resource columns (--part; cosim/report.hpp)
 
   std::size_t size() const;  // the number of points (product of the axes' sizes)
   // Point `index` (0 <= index < size()): the value of each axis, in axis order.

@@ -117,7 +117,8 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
   };
   front_plot("psnr_vs_fps", "rtl_fps", "pareto_psnr_fps", "rtl frames/s (cycle model, 100 MHz)");
   front_plot("psnr_vs_resources", "part_pct", "pareto_psnr_resources",
-             "share of an XC7A200T used by the scarcest resource (%)");
+             "share of the " + t.meta.value("part", std::string("xc7a200t")) +
+                 " used (report cost: sum of LUT, FF, DSP, RAM shares, %)");
   // PSNR against each numeric axis.
   const std::size_t axes = t.meta.at("axes").size();
   for (std::size_t a = 0; a < axes; ++a) {

@@ -225,7 +225,7 @@ Table merge_tables(const std::vector<Table>& shards, const std::vector<std::stri
   for (std::size_t s = 0; s < shards.size(); ++s) {
     if (without_shard(shards[s].meta) != merged.meta)
       throw Error(origins[s] + ": a different sweep from " + origins[0] +
-                  " (scene, --set, --vary or truth differ)");
+                  " (scene, --set, --vary, truth or --part differ)");
     if (shards[s].columns.size() != merged.columns.size() ||
         !std::equal(merged.columns.begin(), merged.columns.end(), shards[s].columns.begin(),
                     [](const Column& a, const Column& b) { return a.name == b.name; }))

@@ -1,13 +1,16 @@
 // Vendor synthesis scripts (voxcast synth-script SCENE --board BOARD --tool
 // vitis --out DIR): for each top-level kernel, a Vitis HLS Tcl script built
 // from the board (part, core clock) and the scene's elaborated configuration
-// (its precision profile selects the compiled preset), naming the real top
-// function and source files (docs/synthesis.md).
+// (its precision profile selects the compiled preset; elaborated_config.hpp,
+// written beside the script, selects the units), naming the real top function
+// and source files (docs/synthesis.md).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "hls/units.hpp"
+#include "refmodel/scene/elaboration.hpp"
 #include "refmodel/scene/scene.hpp"
 #include "rtl_model/board/board.hpp"
 
@@ -32,20 +35,37 @@ struct SynthScript {
 std::vector<SynthTop> synth_tops(const ref::Scene& scene);
 
 // The compiler flags the vendor tool gets for a top (-std, -I, the profile, the
-// vendor fixed-point types).
-std::string synth_cflags(const SynthTop& top, const std::string& source_root);
+// vendor fixed-point types, and -include the elaborated configuration when
+// config_header is not empty).
+std::string synth_cflags(const SynthTop& top, const std::string& source_root,
+                         const std::string& config_header = "");
+
+// The units of the top for an elaboration (ref::Elaboration's flags, one to one).
+hls::Units elaborated_units(const ref::Elaboration& e);
+
+// elaborated_config.hpp for the scene: the profile (kProfile, one of the
+// compiled presets), the units (kUnits) and the sizes ref::elaborate derived
+// from the data and the transfer function, with the omissions and their
+// reasons as comments. Defines VOXCAST_ELABORATED_CONFIG.
+inline constexpr const char* kElaboratedConfigFile = "elaborated_config.hpp";
+std::string elaborated_config_header(const ref::Scene& scene, const ref::Elaboration& e,
+                                     const std::string& scene_name);
 
 // Vitis HLS Tcl for each top. Throws voxcast::Error when a named file does not
 // exist under source_root. `scene_name` goes into the comments only.
+// config_dir: the folder of elaborated_config.hpp (added to the files and
+// passed with -include); empty: the full design (kAllUnits).
 std::vector<SynthScript> vitis_scripts(const ref::Scene& scene, const std::string& scene_name,
                                        const rtl::board::Board& board,
-                                       const std::string& source_root);
+                                       const std::string& source_root,
+                                       const std::string& config_dir = "");
 
 // The source tree this binary was built from (compiled in).
 std::string default_source_root();
 
-// "vitis" (the only tool so far): writes the scripts into out_dir (created)
-// and returns their paths.
+// "vitis" (the only tool so far): elaborates the scene (loads its volume for
+// the data's range), writes elaborated_config.hpp and the scripts into out_dir
+// (created) and returns their paths, the header first.
 std::vector<std::string> write_synth_scripts(const ref::Scene& scene, const std::string& scene_name,
                                              const rtl::board::Board& board,
                                              const std::string& tool, const std::string& out_dir,

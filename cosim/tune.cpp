@@ -88,6 +88,7 @@ TuneAxis parse_tune_axis(const std::string& text) {
 }
 
 TuneResult run_tune(const ref::Scene& scene, const TuneOptions& o) {
+  check_truth_settings(o.truth, scene);  // before anything is loaded or rendered
   const SceneVolume sv = load_scene_volume(scene);
   check_fixed_point(scene, sv, false);
   const ref::DataRange range = ref::data_range(sv.volume, sv.gradients);
@@ -130,10 +131,11 @@ TuneResult run_tune(const ref::Scene& scene, const TuneOptions& o) {
     return key(a) < key(b);
   });
 
-  // The truth: the float reference of the scene's view.
+  // The truth (cosim/truth.hpp), as cosim and sweep measure against it: the
+  // precision does not enter it, so one render serves the whole search.
+  const ref::Image truth = render_truth(scene, sv, o.truth);
   const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
   const ref::RenderInputs inputs = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
-  const ref::Image truth = ref::render_image(inputs, scene.render.threads);
   // Voxel memories depend on three fields only; build each once. Renders are
   // memoised by profile (the probes below and the walk share them).
   std::map<std::tuple<int, int, int>, bittrue::VoxelMemory> memories;
@@ -225,12 +227,15 @@ std::string precision_table(const ref::Scene& scene, const PrecisionProfile& p) 
 void print_tune(std::ostream& os, const ref::Scene& scene, const TuneOptions& o,
                 const TuneResult& r) {
   os << "tune " << scene.origin << ": target PSNR " << o.target_psnr_db << " dB against the "
-     << "float reference, cost on " << o.part << "\n  search space:";
+     << "truth (float reference at " << o.truth.oversampling << "x oversampling), cost on "
+     << o.part << "\n  search space:";
   for (const TuneAxis& a : r.axes) os << " " << a.field << "=" << a.lo << ".." << a.hi;
   os << " (" << r.space << " points; " << r.rendered << " rendered, " << r.pruned
      << " pruned)\n";
   if (!r.found) {
-    os << "  no point of the search space meets the target\n";
+    os << (o.prune ? "  the widest point misses the target, so the pruned search stops (accuracy "
+                     "is not always monotone: the exact search, without --prune, may find one)\n"
+                   : "  no point of the search space meets the target\n");
     return;
   }
   os << "  cheapest: cost " << r.best.cost << ", PSNR " << r.best.psnr_db << " dB\n\n"

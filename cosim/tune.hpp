@@ -1,6 +1,7 @@
 // `voxcast tune SCENE --target-psnr DB`: the cheapest precision profile, by the
 // resource model (cosim/report.hpp), whose image meets a PSNR target against
-// the float reference (issue 6, part 5). Images come from the bit-true engine,
+// the truth (cosim/truth.hpp: the float reference at 16x oversampling, like
+// every accuracy figure of the tool; issue 6, part 5). Images come from the bit-true engine,
 // which takes any profile at run time and is bit-exact with the hls kernels.
 //
 // Search (docs/resources.md): every point of the search space (a few profile
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "cosim/report.hpp"
+#include "cosim/truth.hpp"
 #include "refmodel/precision/profile.hpp"
 #include "refmodel/scene/scene.hpp"
 
@@ -42,6 +44,7 @@ struct TuneOptions {
   std::string part = "xc7a200t";
   std::vector<TuneAxis> axes;  // empty: default_tune_axes
   bool prune = false;  // exact by default: accuracy is not always monotone (docs/resources.md)
+  TruthSettings truth;  // what the PSNR is measured against (--truth-oversampling)
 };
 
 struct TunePoint {

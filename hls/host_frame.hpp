@@ -44,21 +44,48 @@ inline FrameMode frame_mode(ref::RenderMode m) {
   return FrameMode::Shaded;
 }
 
+// Throws voxcast::Error unless a design with units U can render the frame
+// (its camera and render mode; an elaborated top runs only its scene's kind).
+template <Units U>
+void check_frame_fits(const bittrue::FrameSetup& fs, const std::string& engine) {
+  const bool camera = fs.regs.perspective ? U.perspective : U.parallel_origin;
+  const ref::RenderMode m = fs.regs.mode;
+  const bool mode = m == ref::RenderMode::Mip        ? can_mip(U)
+                    : m == ref::RenderMode::Unshaded ? can_composite(U)
+                                                     : can_shade(U);
+  if (!camera || !mode)
+    throw Error(engine + ": the design has no " + (camera ? "" : "units for this camera") +
+                (!camera && !mode ? " and no " : "") +
+                (mode ? "" : "path for render.mode = " + std::string(ref::to_string(m))) +
+                " (it was elaborated for another scene)");
+  if (fs.regs.mode != ref::RenderMode::Mip && !U.ert && fs.regs.ert_enabled)
+    throw Error(engine + ": the design has no ERT comparator, the frame asks for "
+                "render.ert_threshold < 1 (it was elaborated for another scene)");
+}
+
 // The card's registers and tables for one frame, loaded from the host set-up
-// (megabytes for the wide profiles: on the heap). `engine` names the caller
-// in errors.
-template <PrecisionProfile P>
-std::unique_ptr<FrameState<P>> load_frame_state(const bittrue::FrameSetup& fs,
-                                                const std::string& engine) {
-  auto f = std::make_unique<FrameState<P>>();
+// (megabytes for the wide profiles: on the heap), for a design with units U
+// (hls/units.hpp): an absent unit's table is not loaded. `engine` names the
+// caller in errors.
+template <PrecisionProfile P, Units U = kAllUnits>
+std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs,
+                                                   const std::string& engine) {
+  check_frame_fits<U>(fs, engine);
+  auto f = std::make_unique<FrameState<P, U>>();
   f->geometry = load_geometry_registers<P>(fs.regs);
-  if (fs.regs.perspective) load_rsqrt_rom<P>(fs.rsqrt_seed, f->rsqrt);
-  if (!load_class_table<P>(f->class_table, fs.class_table))
-    throw Error(engine + ": classification table size does not match the profile");
-  f->reflectance_regs = reflectance_registers<P>(fs.regs);
-  if (fs.regs.mode == ref::RenderMode::Shaded &&
-      !load_reflectance_map<P>(f->reflectance, fs.rm_diffuse, fs.rm_specular))
-    throw Error(engine + ": reflectance map size does not match the profile");
+  if constexpr (U.perspective) {
+    if (fs.regs.perspective) load_rsqrt_rom<P>(fs.rsqrt_seed, f->rsqrt);
+  }
+  if constexpr (U.classification) {
+    if (!load_class_table<P>(f->class_table, fs.class_table))
+      throw Error(engine + ": classification table size does not match the profile");
+  }
+  if constexpr (U.reflectance_map) {
+    f->reflectance_regs = reflectance_registers<P>(fs.regs);
+    if (fs.regs.mode == ref::RenderMode::Shaded &&
+        !load_reflectance_map<P>(f->reflectance, fs.rm_diffuse, fs.rm_specular))
+      throw Error(engine + ": reflectance map size does not match the profile");
+  }
   f->compositor = compositor_registers<P>(fs.regs);
   f->mode = frame_mode(fs.regs.mode);
   return f;

@@ -128,12 +128,13 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
   for (const std::string board_name : {"vizard2_pci", "alveo_u250"}) {
     for (const std::string profile : {"vizard2", "balanced", "precise"}) {
       SCOPED_TRACE(board_name + " " + profile);
-      const auto scene = ref::default_scene({"precision.profile=" + profile});
+      const auto scene = ref::default_scene(
+          {"precision.profile=" + profile, "volume.source=phantom:shepp-logan?size=128"});
       const auto board = rtl::board::shipped_board(board_name);
       const auto paths = cosim::write_synth_scripts(scene, "scenes/default.toml", board, "vitis",
                                                     dir.string(), root);
-      ASSERT_EQ(paths.size(), 1u);
-      const auto calls = run_with_stubs(paths[0]);
+      ASSERT_EQ(paths.size(), 2u);  // elaborated_config.hpp, then the script
+      const auto calls = run_with_stubs(paths[1]);
       ASSERT_FALSE(calls.empty());
       EXPECT_EQ(calls.back(), "exit");
 
@@ -160,6 +161,8 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
       EXPECT_NE(add_args[2].find("-I" + fs::path(root).lexically_normal().string()),
                 std::string::npos);
       EXPECT_NE(add_args[2].find("-std=c++20"), std::string::npos);
+      // The scene's units: the elaborated configuration written beside the script.
+      EXPECT_NE(add_args[2].find("-include " + paths[0]), std::string::npos) << add_args[2];
       // Every added file exists.
       for (const auto& c : calls) {
         if (c.rfind("add_files ", 0) == 0) {
@@ -181,8 +184,8 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
       std::vector<std::string> order;
       for (const auto& c : calls) order.push_back(c.substr(0, c.find(' ')));
       const std::vector<std::string> want = {
-          "open_project", "set_top",      "add_files",     "add_files",     "open_solution",
-          "set_part",     "create_clock", "csynth_design", "export_design", "exit"};
+          "open_project",  "set_top",  "add_files",    "add_files",     "add_files",
+          "open_solution", "set_part", "create_clock", "csynth_design", "export_design", "exit"};
       EXPECT_EQ(order, want);
     }
   }

@@ -53,6 +53,9 @@ TEST(ReportCli, BadInputIsOneLineError) {
   r = run("tune " + scene("mip.toml") + " --target-psnr 40 --vary weight_bits=9..2");
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.output.find("voxcast: tune: --vary \"weight_bits=9..2\""), 0u) << r.output;
+  r = run("tune " + scene("mip.toml") + " --target-psnr 40 --truth-oversampling 100");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.output, "voxcast: truth oversampling 100 is outside [1, 64]\n");
   r = run("report /nonexistent.toml");
   EXPECT_EQ(r.status, 1);
 }

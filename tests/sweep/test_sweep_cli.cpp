@@ -169,7 +169,7 @@ TEST(Sweep, InfeasiblePointsProgressAndPlots) {
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "precision.value_bits,render.oversampling,status,engine,psnr_db,max_err_lsb,"
             "mean_err_lsb,rms_err_lsb,pct_within_1lsb,ssim,rtl_fps,rtl_ns_per_sample,rtl_cycles,"
-            "luts,ffs,dsps,brams,part_pct,pareto_psnr_fps,pareto_psnr_resources,notes");
+            "part,luts,ffs,dsps,brams,part_pct,pareto_psnr_fps,pareto_psnr_resources,notes");
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
     for (const char* f : {"psnr_vs_fps.png", "psnr_vs_fps.svg", "psnr_vs_render_oversampling.png",
                           "psnr_vs_render_oversampling.svg"})
@@ -192,6 +192,71 @@ TEST(Sweep, WithoutGnuplotThePlotsAreSkippedWithAWarning) {
   EXPECT_TRUE(fs::exists(d / "results.csv"));
   EXPECT_TRUE(fs::exists(d / "plots.gp"));
   EXPECT_FALSE(fs::exists(d / "psnr_vs_fps.png"));
+}
+
+}  // namespace
+
+namespace {
+
+// --part chooses the part of the resource columns: every point's LUT, FF, DSP
+// and RAM figures are `voxcast report`'s totals for that part and part_pct is
+// report's cost (the sum of the four shares of the part's capacity, in %);
+// the CSV's part column and results.json's sweep.part name it. An unknown
+// part is one line listing the known ones.
+TEST(Sweep, PartSelectsTheResourceColumnsPart) {
+  const auto d = temp_dir("part");
+  for (const char* part : {"xc2v3000", "xc7k325t"}) {
+    const fs::path out = d / part;
+    const Command s = run("sweep " + tiny_scene() + " --set precision.profile=vizard2 --vary " +
+                          "precision.weight_bits=6 --no-plots --part " + part + " --out " +
+                          out.string());
+    ASSERT_EQ(s.status, 0) << s.output;
+    const nlohmann::json results = json_of(out / "results.json");
+    EXPECT_EQ(results.at("sweep").at("part"), part);
+    for (const auto& row : results.at("rows")) {
+      const nlohmann::json& c = row.at("cells");
+      EXPECT_EQ(c.at("part"), part);
+      const Command r = run("report " + tiny_scene() + " --set precision.profile=vizard2 " +
+                            "--set precision.weight_bits=" +
+                            c.at("precision.weight_bits").get<std::string>() + " --part " + part +
+                            " --json " + (out / "report.json").string());
+      ASSERT_EQ(r.status, 0) << r.output;
+      const nlohmann::json rep = json_of(out / "report.json");
+      const nlohmann::json& total = rep.at("total");
+      const nlohmann::json& cap = rep.at("part");
+      EXPECT_EQ(c.at("luts"), total.at("lut"));
+      EXPECT_EQ(c.at("ffs"), total.at("ff"));
+      EXPECT_EQ(c.at("dsps"), total.at("dsp"));
+      EXPECT_EQ(c.at("brams"), total.at("bram"));
+      double share = 0.0;
+      for (const char* k : {"lut", "ff", "dsp", "bram"})
+        if (cap.at(k).get<double>() > 0)
+          share += total.at(k).get<double>() / cap.at(k).get<double>();
+      EXPECT_NEAR(c.at("part_pct").get<double>(), 100.0 * share, 1e-9);
+    }
+    const std::string csv = text_of(out / "results.csv");
+    const std::string second = csv.substr(csv.find('\n') + 1);
+    EXPECT_NE(second.find(std::string(",") + part + ","), std::string::npos) << csv;
+  }
+  // Virtex-II counts 4-input LUTs and MULT18X18s, 7-series 6-input LUTs and
+  // DSP48E1s: the part changes the resource figures, not only the share.
+  const nlohmann::json v2 = json_of(d / "xc2v3000" / "results.json");
+  const nlohmann::json k7 = json_of(d / "xc7k325t" / "results.json");
+  EXPECT_GT(v2.at("rows")[0].at("cells").at("luts").get<double>(),
+            k7.at("rows")[0].at("cells").at("luts").get<double>());
+  // Results for different parts are different sweeps: they do not merge.
+  const Command merge = run("sweep-merge " + (d / "xc2v3000").string() + " " +
+                            (d / "xc7k325t").string() + " --no-plots --out " +
+                            (d / "merged").string());
+  EXPECT_EQ(merge.status, 1);
+  EXPECT_NE(merge.output.find("(scene, --set, --vary, truth or --part differ)"),
+            std::string::npos)
+      << merge.output;
+  const Command bad = run("sweep " + tiny_scene() + " --vary precision.weight_bits=5 --part " +
+                          "xc9999 --out " + (d / "bad").string());
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_EQ(bad.output, "voxcast: sweep: --part: unknown part \"xc9999\" (known: xcv1000e, "
+                        "xc2v3000, xc7a200t, xc7k325t)\n");
 }
 
 }  // namespace
