@@ -110,12 +110,15 @@ std::vector<BenchResult> run_bench(const ref::Scene& scene, const std::vector<st
 }
 
 void print_bench(std::ostream& os, const ref::Scene& scene, const std::vector<BenchResult>& rs) {
-  os << "scene    " << scene.origin << " (" << scene.render.width << "x" << scene.render.height
-     << " " << ref::to_string(scene.render.mode) << ", oversampling " << scene.render.oversampling
-     << ", profile " << scene.precision_name << ", " << ref::worker_count(scene.render.threads)
-     << " threads)\n";
-  // VIRIM's unit of work is a rotated and traced voxel.
+  // VIRIM's unit of work is a rotated and traced voxel; its widths are its own profile.
   const bool voxels = scene.algorithm == ref::Algorithm::Heidelberg;
+  os << "scene    " << scene.origin << " (" << scene.render.width << "x" << scene.render.height << " ";
+  if (voxels)
+    os << "Heidelberg model, profile virim";
+  else
+    os << ref::to_string(scene.render.mode) << ", oversampling " << scene.render.oversampling
+       << ", profile " << scene.precision_name;
+  os << ", " << ref::worker_count(scene.render.threads) << " threads)\n";
   os << std::left << std::setw(10) << "engine" << std::right << std::setw(14)
      << (voxels ? "voxels" : "samples") << std::setw(12) << "median s" << std::setw(12) << "min s"
      << std::setw(14) << (voxels ? "M voxels/s" : "M samples/s") << std::setw(12)
@@ -129,8 +132,12 @@ void print_bench(std::ostream& os, const ref::Scene& scene, const std::vector<Be
     os << std::left << std::setw(10) << r.engine << std::right << std::setw(14) << r.samples
        << std::setprecision(3) << std::setw(12) << r.median_seconds << std::setw(12)
        << r.min_seconds << std::setprecision(2) << std::setw(14) << rate / 1e6 << std::setw(12)
-       << (rate > 0 ? 1e9 / rate : 0.0) << std::setw(9)
-       << (ref_rate > 0 ? rate / ref_rate : 0.0) << "x\n";
+       << (rate > 0 ? 1e9 / rate : 0.0);
+    // Without the ref engine in the run there is nothing to compare with.
+    if (ref_rate > 0)
+      os << std::setw(9) << rate / ref_rate << "x\n";
+    else
+      os << std::setw(10) << "-" << "\n";
   }
 }
 

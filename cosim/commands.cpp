@@ -209,34 +209,58 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   return s;
 }
 
-void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummary& s) {
+namespace {
+
+// The "image" and "engine" lines of a VIRIM scene: its view cube and
+// interpolation instead of the ray caster's camera, its own profile.
+void print_heidelberg_setup(std::ostream& os, const ref::Scene& scene, const RenderSummary& s) {
+  const ref::HeidelbergDesc& h = scene.heidelberg;
+  os << "image    " << scene.render.width << "x" << scene.render.height
+     << " Heidelberg model (VIRIM), view cube depth "
+     << (h.depth > 0 ? std::to_string(h.depth) : std::string("= largest volume edge")) << ", "
+     << (h.interpolation == ref::HeidelbergInterpolation::Gaussian ? "Gaussian mask" : "trilinear")
+     << ", " << h.weight_bits << " weight bits, "
+     << (h.perspective > 0.0 ? "perspective" : "parallel") << (h.stereo_deg > 0.0 ? ", stereo" : "")
+     << "\n"
+     << "engine   " << to_string(s.engine) << (s.engine == Engine::Ref ? "" : ", profile virim")
+     << ", " << s.threads << " threads, " << s.render_seconds << " s\n";
+  if (s.engine == Engine::Rtl)
+    os << std::setprecision(0) << "card     VIRIM, " << h.modules << " module(s): " << s.rtl_cycles
+       << std::setprecision(2) << " cycles at " << h.rotator_mhz << " MHz (rotator): " << s.rtl_fps
+       << " frames/s, " << s.rtl_ns_per_sample << " ns/voxel; rtl == hls on every pixel\n";
+}
+
+void print_raycast_setup(std::ostream& os, const ref::Scene& scene, const RenderSummary& s) {
   const double rays = static_cast<double>(std::max<std::uint64_t>(s.stats.rays, 1));
-  os << std::fixed << std::setprecision(2);
-  os << "scene    " << scene.origin << "\n"
-     << "volume   " << s.volume_source << "  " << s.dims[0] << "x" << s.dims[1] << "x" << s.dims[2]
-     << ", " << s.bits << "-bit voxels (loaded in " << s.load_seconds << " s)\n"
-     << "image    " << scene.render.width << "x" << scene.render.height << " "
+  os << "image    " << scene.render.width << "x" << scene.render.height << " "
      << ref::to_string(scene.render.mode) << ", " << ref::to_string(scene.camera.projection)
-     << ", oversampling " << scene.render.oversampling << ", ERT "
-     << scene.render.ert_threshold << "\n"
+     << ", oversampling " << scene.render.oversampling << ", ERT " << scene.render.ert_threshold
+     << "\n"
      << "engine   " << to_string(s.engine)
      << (s.engine == Engine::Ref ? "" : ", profile " + scene.precision_name) << ", " << s.threads
-     << " threads, "
-     << s.render_seconds << " s\n"
+     << " threads, " << s.render_seconds << " s\n"
      << "rays     " << 100.0 * static_cast<double>(s.stats.rays_hit) / rays << "% hit the volume, "
      << 100.0 * static_cast<double>(s.stats.rays_terminated_early) / rays << "% terminated early, "
      << std::setprecision(1) << static_cast<double>(s.stats.samples) / 1e6 << " M samples\n";
-  if (s.engine == Engine::Rtl && scene.algorithm == ref::Algorithm::Heidelberg)
-    os << std::setprecision(2) << "card     VIRIM, " << scene.heidelberg.modules
-       << " module(s): " << s.rtl_cycles << " cycles at " << scene.heidelberg.rotator_mhz
-       << " MHz (rotator): " << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample
-       << " ns/voxel; rtl == hls on every pixel\n";
-  else if (s.engine == Engine::Rtl)
-    os << std::setprecision(2) << "card     " << s.rtl_cycles << " cycles at 100 MHz: "
-       << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample << " ns/sample, row hit rate "
-       << 100.0 * s.rtl_row_hit_rate << "%\n"
+  if (s.engine == Engine::Rtl)
+    os << std::setprecision(0) << "card     " << s.rtl_cycles << std::setprecision(2)
+       << " cycles at 100 MHz: " << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample
+       << " ns/sample, row hit rate " << 100.0 * s.rtl_row_hit_rate << "%\n"
        << "         " << scene.rtl.scheduler << " scheduler, " << scene.rtl.layout << " layout, "
        << scene.rtl.traversal << " traversal, " << scene.rtl.ray_slots << " ray slots\n";
+}
+
+}  // namespace
+
+void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummary& s) {
+  os << std::fixed << std::setprecision(2);
+  os << "scene    " << scene.origin << "\n"
+     << "volume   " << s.volume_source << "  " << s.dims[0] << "x" << s.dims[1] << "x" << s.dims[2]
+     << ", " << s.bits << "-bit voxels (loaded in " << s.load_seconds << " s)\n";
+  if (scene.algorithm == ref::Algorithm::Heidelberg)
+    print_heidelberg_setup(os, scene, s);
+  else
+    print_raycast_setup(os, scene, s);
   if (s.engine == Engine::Rtl && s.vcd_commands > 0)
     os << "vcd      " << s.vcd_commands << " SDRAM commands inside the window\n";
   for (const std::string& w : s.written) os << "wrote    " << w << "\n";
