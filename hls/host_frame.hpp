@@ -61,6 +61,7 @@ std::unique_ptr<FrameState<P>> load_frame_state(const bittrue::FrameSetup& fs,
     throw Error(engine + ": reflectance map size does not match the profile");
   f->compositor = compositor_registers<P>(fs.regs);
   f->mode = frame_mode(fs.regs.mode);
+  if (fs.leap) load_leap<P>(*fs.leap, f->leap, f->minmax, engine);
   return f;
 }
 

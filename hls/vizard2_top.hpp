@@ -20,6 +20,7 @@
 #include "hls/interpolation_processor.hpp"
 #include "hls/reflectance_map.hpp"
 #include "hls/shader.hpp"
+#include "hls/space_leaping_unit.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
 
@@ -38,6 +39,11 @@ struct FrameState {
   ReflectanceMap<P> reflectance;
   CompositorRegisters<P> compositor;
   FrameMode mode;
+  // Space leaping (hls/space_leaping_unit.hpp): registers, prefix table and the
+  // min-max block memory, loaded when the volume is (the blocks) and with the
+  // classification table (the prefix counts).
+  LeapRegisters<P> leap;
+  MinMaxMemory<P> minmax;
 };
 
 // Tracing hook: the default does nothing and compiles away. The cosim harness
@@ -47,9 +53,17 @@ struct NullTracer {
   void ray(const Ray&) {}
   template <class... Args>
   void sample(const Args&...) {}
+  void skip(std::uint64_t) {}
 };
 
-// One ray through the whole pipeline; `samples` counts the samples it took.
+// Counts the samples space leaping skipped (render_rows' statistics).
+struct SkipCounter : NullTracer {
+  std::uint64_t skipped = 0;
+  void skip(std::uint64_t run) { skipped += run; }
+};
+
+// One ray through the whole pipeline; `samples` counts the samples it took
+// (tracer.skip those space leaping skipped).
 template <PrecisionProfile P, class Banks, class Tracer = NullTracer>
 OutputPixel<P> cast_ray(const FrameState<P>& f, const Banks& banks, int px, int py,
                         std::uint64_t& samples, Tracer& tracer) {
@@ -80,7 +94,12 @@ OutputPixel<P> cast_ray(const FrameState<P>& f, const Banks& banks, int px, int 
     tracer.sample(p, s, e, r, c, acc);
     return !ert_reached<P>(acc, f.compositor);
   };
-  march_ray<P>(f.geometry, banks, ray, per_sample);
+  if (f.leap.enabled && !mip) {
+    auto skip = [&tracer](std::uint64_t run) { tracer.skip(run); };
+    march_ray_leaping<P>(f.geometry, f.leap, f.minmax, banks, ray, per_sample, skip);
+  } else {
+    march_ray<P>(f.geometry, banks, ray, per_sample);
+  }
   if (mip) acc = mip_pixel<P>(peak, f.compositor);
   return output<P>(acc);
 }
@@ -90,8 +109,8 @@ OutputPixel<P> cast_ray(const FrameState<P>& f, const Banks& banks, int px, int 
 // ranges on several host threads; the synthesized top calls it for the frame.
 template <PrecisionProfile P, class Banks>
 void render_rows(const FrameState<P>& f, const Banks& banks, int width, int y0, int y1,
-                 OutputPixel<P>* fb, std::uint64_t* samples) {
-  NullTracer none;
+                 OutputPixel<P>* fb, std::uint64_t* samples, std::uint64_t* skipped = nullptr) {
+  SkipCounter none;
   std::uint64_t taken = 0;
   [[maybe_unused]] row_loop : for (int y = y0; y < y1; ++y) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 8192 avg = 256)
@@ -101,6 +120,7 @@ void render_rows(const FrameState<P>& f, const Banks& banks, int width, int y0, 
     }
   }
   *samples = taken;
+  if (skipped) *skipped = none.skipped;
 }
 
 // The synthesizable top: the frame state and the 8 voxel banks in external
