@@ -21,7 +21,8 @@
 // the issue stage; no voxel is read for a skipped sample.
 //
 // Layout: 1. LeapParams<P>; 2. LeapRegisters<P>, MinMaxMemory<P>;
-// 3. the unit: block_address, block_empty, leap_run, march_ray_leaping;
+// 3. the unit: block_coords, block_address, block_empty, leap_run,
+//    sample_block_empty, march_ray_leaping;
 // 4. host:: loading from bittrue::LeapTables (not synthesized).
 #pragma once
 
@@ -95,21 +96,27 @@ struct MinMaxMemory {
 
 // ---- 3. The unit ----------------------------------------------------------------------------
 
-// The block of the sample at p: (i0 >> lb) per axis, x fastest.
+// The block coordinates of the sample at p: i0 >> lb per axis.
 template <PrecisionProfile P>
-typename LeapParams<P>::block_addr_t block_address(const GeometryRegisters<P>& r,
-                                                   const LeapRegisters<P>& lr,
-                                                   const typename GeometryParams<P>::pos_t p[3]) {
+void block_coords(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
+                  const typename GeometryParams<P>::pos_t p[3],
+                  typename LeapParams<P>::bcoord_t b[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using G = GeometryParams<P>;
-  using L = LeapParams<P>;
-  typename L::bcoord_t b[3];
   [[maybe_unused]] block_axis_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename InterpolationParams<P>::cpos_t cp;
     const typename G::coord_t i0 = sample_cell<P>(r, p[k], k, cp);
     b[k] = i0 >> lr.lb.to_uint();
   }
+}
+
+// The block memory address of block coordinates b, x fastest.
+template <PrecisionProfile P>
+typename LeapParams<P>::block_addr_t block_address(const LeapRegisters<P>& lr,
+                                                   const typename LeapParams<P>::bcoord_t b[3]) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  using L = LeapParams<P>;
   const typename L::baddr_wide_t addr = b[0] + b[1] * lr.BX + b[2] * lr.BXY;
   return typename L::block_addr_t(addr);  // < BXY·blocks_z <= max_blocks (host-checked)
 }
@@ -126,14 +133,15 @@ bool block_empty(const LeapRegisters<P>& lr, const MinMaxEntry<P>& e) {
   return lr.prefix[a_hi + 1] == lr.prefix[a_lo];
 }
 
-// The samples from p (the ray's remaining `remaining` >= 1) that lie in block
-// b, p's block; p is left at the last of them. Greedy binary search over
-// q + 2^j·s (the block's samples are consecutive, see the header).
+// The samples from p (the ray's remaining `remaining` >= 1) that lie in p's
+// block, whose coordinates are b; p is left at the last of them. Greedy binary
+// search over q + 2^j·s (the block's samples are consecutive, see the header):
+// each stage compares block coordinates, no memory read.
 template <PrecisionProfile P>
 std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
                        typename GeometryParams<P>::pos_t p[3],
                        const typename GeometryParams<P>::step_t s[3], std::uint64_t remaining,
-                       const typename LeapParams<P>::block_addr_t& b) {
+                       const typename LeapParams<P>::bcoord_t b[3]) {
   using G = GeometryParams<P>;
   using L = LeapParams<P>;
   std::uint64_t run = 1;
@@ -149,7 +157,9 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
       const typename L::wide_pos_t q = p[k] + ws;
       cand[k] = q;  // exact: a sample of this ray, inside the position range
     }
-    if (block_address<P>(r, lr, cand) == b) {
+    typename L::bcoord_t cb[3];
+    block_coords<P>(r, lr, cand, cb);
+    if (cb[0] == b[0] && cb[1] == b[1] && cb[2] == b[2]) {
       [[maybe_unused]] leap_take_loop : for (int k = 0; k < 3; ++k) {
         VOXCAST_HLS_PRAGMA(HLS UNROLL)
         p[k] = cand[k];
@@ -158,6 +168,16 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
     }
   }
   return run;
+}
+
+// The block look-up of the sample at p: its coordinates (into b) and whether
+// the block is empty (one block-memory read, two prefix-table reads).
+template <PrecisionProfile P>
+bool sample_block_empty(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
+                        const MinMaxMemory<P>& mm, const typename GeometryParams<P>::pos_t p[3],
+                        typename LeapParams<P>::bcoord_t b[3]) {
+  block_coords<P>(r, lr, p, b);
+  return block_empty<P>(lr, mm.block[block_address<P>(lr, b).to_uint()]);
 }
 
 // march_ray (hls/interpolation_processor.hpp) with space leaping: per clock
@@ -174,8 +194,8 @@ void march_ray_leaping(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
   [[maybe_unused]] leap_sample_loop : while (k < n) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 444 avg = 256)
-    const typename LeapParams<P>::block_addr_t b = block_address<P>(r, lr, p);
-    if (block_empty<P>(lr, mm.block[b.to_uint()])) {
+    typename LeapParams<P>::bcoord_t b[3];
+    if (sample_block_empty<P>(r, lr, mm, p, b)) {
       const std::uint64_t run = leap_run<P>(r, lr, p, ray.s, n - k, b);
       skip(run);
       k += run;

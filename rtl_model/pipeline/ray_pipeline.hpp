@@ -550,8 +550,8 @@ class RayPipeline {
   // to the first sample after the block (hls::leap_run) instead of issuing; the
   // ray's issue waits latency.leap clocks. True if it leapt.
   bool try_leap(Cycle now, int i, Slot& s) {
-    const auto b = hls::block_address<P>(f_.geometry, f_.leap, s.p);
-    if (!hls::block_empty<P>(f_.leap, f_.minmax.block[b.to_uint()])) return false;
+    typename hls::LeapParams<P>::bcoord_t b[3];
+    if (!hls::sample_block_empty<P>(f_.geometry, f_.leap, f_.minmax, s.p, b)) return false;
     const std::uint64_t run = hls::leap_run<P>(f_.geometry, f_.leap, s.p, s.s, s.n - s.next, b);
     hls::step_position<P>(s.p, s.s);
     s.next += run;
