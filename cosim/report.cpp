@@ -306,9 +306,9 @@ UnitOps space_leaping(const Widths& w, const ref::Elaboration& e) {
   o.push_back(mem(OpKind::Ram, "opacity prefix table (2 read ports)", 1,
                   std::max(e.class_entries, 1) + 1, w.tfa + 1));
   o.push_back(cmp("prefix[hi + 1] = prefix[lo]", 1, w.tfa + 1));
-  // The leap: count_bits stages of q + 2^j·s, the candidate's block coordinates
+  // The leap: leap_bits stages of q + 2^j·s, the candidate's block coordinates
   // (clamp, i0 = LAST) and their comparison with the block's, and the run count.
-  const int stages = w.count;
+  const int stages = std::min(w.count, 10);  // hls::LeapParams::leap_bits
   o.push_back(add("leap q + 2^j·s", 3 * stages, w.pos));
   o.push_back(cmp("leap clamp", 6 * stages, w.pos));
   o.push_back(mux("leap clamp select", 6 * stages, w.pos, 2));

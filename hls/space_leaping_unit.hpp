@@ -57,8 +57,12 @@ struct LeapParams {
   // more blocks is refused at load (use a larger render.leap_block).
   static constexpr int block_addr_bits = 15;
   static constexpr int max_blocks = 1 << block_addr_bits;
-  // The leap's binary search covers any run up to the ray's sample count.
-  static constexpr int leap_bits = G::count_bits;
+  // The leap's binary search: leap_bits stages find runs of up to
+  // 2^leap_bits samples. A longer run (a 64-cell block crossed at a small
+  // step) is split into several leaps, each exact, so this bounds the
+  // hardware, not the result: 1024 samples cover an 8^3 block's diagonal at
+  // 16x oversampling (8·sqrt(3)·16 = 222) with room for anisotropic spacing.
+  static constexpr int leap_bits = G::count_bits < 10 ? G::count_bits : 10;
 
   using count_t = uint_t<ta + 1>;            // prefix counts in [0, 2^ta]
   using lb_t = uint_t<3>;                    // log2 of the block edge, 2..6

@@ -49,8 +49,8 @@ struct UnitLatencies {
   // subtraction) runs beside the address generator: `leap_lookup` more clocks
   // to the requests. A leap over an empty block holds its ray's issue for
   // `leap` clocks: the look-up, then the binary search of hls::leap_run, whose
-  // count_bits compare stages are pipelined two to a clock after the look-up
-  // (an assumption of this model; every block visited costs one leap).
+  // ten compare stages (LeapParams::leap_bits) run five to a clock after the
+  // look-up (an assumption of this model; every leap costs the same).
   int leap_lookup = 2;
   int leap = 4;
   // The compositor's accumulation is a one-clock recurrence (§7): one sample

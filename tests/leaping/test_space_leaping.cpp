@@ -43,8 +43,7 @@ Engines run_all(const ref::Scene& s, const cosim::SceneVolume& sv, int threads =
 }
 
 ref::Scene shipped(const std::string& name, ref::Overrides o) {
-  o.push_back("render.width=24");
-  o.push_back("render.height=24");
+  o.insert(o.begin(), {"render.width=24", "render.height=24"});
   return ref::load_scene_file(std::string(VOXCAST_SOURCE_DIR) + "/scenes/" + name, o);
 }
 
@@ -99,6 +98,14 @@ TEST(SpaceLeaping, MipSceneIsUntouched) {
 TEST(SpaceLeaping, OtherBlockSizesAndProfiles) {
   expect_exact("default.toml", {"render.leap_block=4", "precision.profile=vizard2"}, true);
   expect_exact("default.toml", {"render.leap_block=32", "render.mode=unshaded"}, true);
+  // Runs longer than one leap's 2^leap_bits = 1024 samples (a 64-cell block
+  // at 16x: up to 64·sqrt(3)·16 = 1774) take several leaps, still exact. A
+  // transparent transfer function empties every block: every sample is skipped.
+  expect_exact("default.toml",
+               {"render.width=8", "render.height=8", "render.leap_block=64",
+                "render.oversampling=16",
+                "classification.points=[{value=0, alpha=0.0}, {value=255, alpha=0.0}]"},
+               true);
 }
 
 TEST(SpaceLeaping, RtlIssuesExactlyTheSkippedSamplesFewer) {
