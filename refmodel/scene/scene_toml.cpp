@@ -594,11 +594,6 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   read_classification(top.table("classification"), s);
   if (top.has("camera")) read_camera(top.table("camera"), s.camera);
   read_render(top.table("render"), s.render);
-  // VIZARD II's ray caster only (docs/leaping.md): VIRIM has no rays to leap or jitter.
-  for (const char* key : {"space_leaping", "jitter"})
-    if (s.algorithm == Algorithm::Heidelberg &&
-        (std::string(key) == "jitter" ? s.render.jitter : s.render.space_leaping))
-      top.table("render").fail(key, "applies only with render.algorithm = \"raycast\"");
   read_lights(top, s.lights);
   read_precision(top.table("precision"), s);
   read_rtl(top.table("rtl"), s.base_dir, s.rtl);

@@ -223,10 +223,6 @@ TEST(SpaceLeaping, SceneKeysRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_of("render.leap_block=128").find("outside [4, 64]"), std::string::npos);
   EXPECT_NE(error_of("render.space_leaping=1").find("must be true or false"), std::string::npos);
-  // VIRIM's Heidelberg model has no rays to leap or jitter.
-  const std::string heidelberg = std::string(VOXCAST_SOURCE_DIR) + "/scenes/heidelberg.toml";
-  EXPECT_THROW(ref::load_scene_file(heidelberg, {"render.jitter=true"}), Error);
-  EXPECT_NO_THROW(ref::load_scene_file(heidelberg, {"render.jitter=false"}));
 }
 
 TEST(SpaceLeaping, ReportCountsTheBlockMemoryOnlyWhenEnabled) {
