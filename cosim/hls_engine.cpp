@@ -28,11 +28,13 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
   const int w = fs.regs.width, h = fs.regs.height;
   std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   std::vector<std::uint64_t> row_samples(static_cast<std::size_t>(h), 0);
+  std::vector<std::uint64_t> row_skipped(static_cast<std::size_t>(h), 0);
   ref::parallel_for(
       h,
       [&](int y) {
         hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(),
-                            &row_samples[static_cast<std::size_t>(y)]);
+                            &row_samples[static_cast<std::size_t>(y)],
+                            &row_skipped[static_cast<std::size_t>(y)]);
       },
       threads);
   ref::QuantImage img(w, h, P.out_bits);
@@ -41,6 +43,7 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
     *stats = ref::FrameStats{};
     stats->rays = fb.size();
     for (std::uint64_t n : row_samples) stats->samples += n;
+    for (std::uint64_t n : row_skipped) stats->samples_skipped += n;
   }
   return img;
 }
@@ -69,6 +72,7 @@ struct Recorder {
     t.value = s.value.to_double();
     return t;
   }
+  void skip(std::uint64_t) {}  // skipped samples leave no trace, as in the bit-true engine
   // MIP sample.
   template <class Pos, class M>
   void sample(const Pos& p, const hls::Sample<P>& s, const M& peak) {

@@ -286,6 +286,48 @@ UnitOps output(const Widths& w) {
   return u;
 }
 
+// Space leaping (docs/leaping.md, hls/space_leaping_unit.hpp): the block
+// look-up beside the address generator and the leaping stepper's search.
+UnitOps space_leaping(const Widths& w, const ref::Elaboration& e) {
+  UnitOps u{"space_leaping", "docs/leaping.md", {}, 0, 1};
+  auto& o = u.ops;
+  const int lb = std::countr_zero(static_cast<unsigned>(e.leap_block));
+  const int bc = std::max(1, w.a - lb);  // block coordinate bits
+  const int ba = bits_for(std::max(1LL, e.leap_blocks - 1));
+  // Block look-up: coordinates are wiring (i0 >> lb), then the address.
+  o.push_back(mul("by·BX", 1, bc, false, bc, false));
+  o.push_back(mul("bz·BXY", 1, bc, false, ba, false));
+  o.push_back(add("block address", 2, ba));
+  o.push_back(mem(OpKind::Ram, "min-max block memory (min, max)", 1,
+                  static_cast<int>(e.leap_blocks), 2 * e.value_store_bits));
+  // The table addresses of min and max (as §4.1), two prefix reads, the test.
+  o.push_back(add("address Q_RND(min, max)", 2, w.tfa + 1));
+  o.push_back(cmp("address clamp", 2, w.tfa + 1));
+  o.push_back(mem(OpKind::Ram, "opacity prefix table (2 read ports)", 1,
+                  std::max(e.class_entries, 1) + 1, w.tfa + 1));
+  o.push_back(cmp("prefix[hi + 1] = prefix[lo]", 1, w.tfa + 1));
+  // The leap: leap_bits stages of q + 2^j·s, the candidate's block coordinates
+  // (clamp, i0 = LAST) and their comparison with the block's, and the run count.
+  const int stages = std::min(w.count, 10);  // hls::LeapParams::leap_bits
+  o.push_back(add("leap q + 2^j·s", 3 * stages, w.pos));
+  o.push_back(cmp("leap clamp", 6 * stages, w.pos));
+  o.push_back(mux("leap clamp select", 6 * stages, w.pos, 2));
+  o.push_back(cmp("leap i0 = LAST", 3 * stages, w.a));
+  o.push_back(cmp("leap same block", 3 * stages, bc));
+  o.push_back(add("leap run + 2^j", stages, w.count));
+  o.push_back(cmp("leap run + 2^j <= remaining", stages, w.count));
+  o.push_back(mux("leap take", stages, 3 * w.pos + w.count, 2));
+  return u;
+}
+
+// render.jitter: the pixel hash (refmodel/render/jitter.hpp) and k_in + J.
+UnitOps jitter(const Widths& w) {
+  UnitOps u{"jitter", "docs/leaping.md", {}, 0, 1};
+  u.ops.push_back(mul("lowbias32 x·C", 2, 32, false, 32, false));
+  u.ops.push_back(add("k_in + J·2^-tf", 1, w.k));
+  return u;
+}
+
 // The FIFOs and ray slots of the cycle model's pipeline (rtl_model/pipeline),
 // at the widths of what they carry.
 UnitOps pipeline_buffers(const Widths& w, const ref::Elaboration& e,
@@ -343,7 +385,7 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   const PrecisionProfile& p = e.profile;
   const Widths w = widths(p);
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
-      pc.latency, {e.mip, e.reflectance_map, e.perspective});
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
   std::vector<UnitOps> units;
   auto put = [&](UnitOps u, int latency, int ii = 1) {
     u.latency = latency;
@@ -355,6 +397,10 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   put(ray_setup(w, e.parallel_origin), l.ray_setup - rsqrt, l.ray_setup_interval);
   put(stepping(w), 1);
   put(address_generator(w), l.address - 1);
+  // Beside the address generator: adds its look-up to the requests' latency.
+  if (e.space_leaping) put(space_leaping(w, e), l.leap_lookup);
+  // Beside the direction and rsqrt pipeline, shorter than it: no latency.
+  if (e.jitter) put(jitter(w), 0, l.ray_setup_interval);
   put(interpolation(w, e), l.interpolation);
   if (e.classification) put(classification(w, e), l.classification);
   if (e.reflectance_map) put(reflectance(w, p), l.shading - 1);
@@ -521,9 +567,10 @@ ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
     rep.units.push_back(std::move(ur));
   }
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
-      pc.latency, {e.mip, e.reflectance_map, e.perspective});
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
   rep.latency_ray_setup = l.ray_setup;
-  rep.latency_sample = l.address + l.interpolation + l.classification + l.shading + 1;
+  rep.latency_sample =
+      l.address + l.leap_lookup + l.interpolation + l.classification + l.shading + 1;
   rep.ii = 1;
   return rep;
 }

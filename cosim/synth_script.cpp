@@ -74,7 +74,8 @@ hls::Units elaborated_units(const ref::Elaboration& e) {
                     .shader = e.shader,
                     .compositor = e.compositor,
                     .ert = e.ert,
-                    .mip = e.mip};
+                    .mip = e.mip,
+                    .space_leaping = e.space_leaping};
 }
 
 std::string elaborated_config_header(const ref::Scene& scene, const ref::Elaboration& e,
@@ -107,6 +108,7 @@ std::string elaborated_config_header(const ref::Scene& scene, const ref::Elabora
      << "    .compositor = " << b(u.compositor) << ",\n"
      << "    .ert = " << b(u.ert) << ",\n"
      << "    .mip = " << b(u.mip) << ",\n"
+     << "    .space_leaping = " << b(u.space_leaping) << ",\n"
      << "};\n\n"
      << "// Sizes from the data and the transfer function (what `voxcast report`\n"
      << "// prices); the kernels' fields keep the profile's widths, the top checks\n"

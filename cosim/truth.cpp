@@ -33,6 +33,10 @@ ref::Scene truth_scene(const ref::Scene& scene, const TruthSettings& t) {
   ref::Scene s = scene;
   s.render.oversampling = t.oversampling;
   s.render.ert_threshold = kTruthErtThreshold;
+  // The truth samples every ray from its entry (no jitter); space leaping
+  // would not change it (docs/leaping.md) and is left off.
+  s.render.jitter = false;
+  s.render.space_leaping = false;
   return s;
 }
 
@@ -41,7 +45,9 @@ std::string truth_key(const ref::Scene& scene, const TruthSettings& t) {
   root.erase("precision");
   root.erase("rtl");
   if (toml::table* render = root["render"].as_table())
-    for (const char* k : {"oversampling", "ert_threshold", "threads"}) render->erase(k);
+    for (const char* k : {"oversampling", "ert_threshold", "threads", "jitter", "space_leaping",
+                          "leap_block"})
+      render->erase(k);
   std::ostringstream os;
   os << root << "\n# truth oversampling " << fmt(t.oversampling) << ", ERT "
      << fmt(kTruthErtThreshold) << "\n";

@@ -22,6 +22,7 @@
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "refmodel/precision/profile.hpp"
+#include "refmodel/render/jitter.hpp"
 
 #ifndef __SYNTHESIS__
 #include <vector>
@@ -109,6 +110,7 @@ template <PrecisionProfile P>
 struct GeometryRegisters {
   using G = GeometryParams<P>;
   bool perspective = true;
+  bool jitter = false;                          // render.jitter
   typename G::dir_t A[3], B[3], C[3];           // perspective directions
   typename G::origin_t E[3];                    // perspective eye, index space
   typename G::origin_t O[3], Pcol[3], Rrow[3];  // parallel origin and increments
@@ -246,9 +248,11 @@ void pixel_origin(const GeometryRegisters<P>& r, typename GeometryParams<P>::pix
 }
 
 // §1.5-1.6: clip in units of samples, sample count and first position.
+// `jitter` (render.jitter, else 0): the first sample's delay in samples, in [0, 1).
 template <PrecisionProfile P>
 RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParams<P>::origin_t o[3],
-                     const typename GeometryParams<P>::step_t s[3]) {
+                     const typename GeometryParams<P>::step_t s[3],
+                     const typename GeometryParams<P>::k_t& jitter = 0) {
   using G = GeometryParams<P>;
   using k_t = typename G::k_t;
   RaySetup<P> ray;
@@ -274,6 +278,7 @@ RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParam
     }
   }
   if (k_in < 0) k_in = 0;
+  k_in += jitter;  // exact: tf fraction bits, k_in + 1 within k_t's range
   ray.hit = any && inside && !(k_in > k_out);
   if (ray.hit) {
     ray.k_in = k_in;
@@ -297,6 +302,16 @@ RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParam
   return ray;
 }
 
+// render.jitter: the ray parameter offset J·2^-tf of pixel (px, py), J the top
+// tf bits of ref::pixel_hash (an integer hash, refmodel/render/space_leaping.hpp).
+template <PrecisionProfile P>
+typename GeometryParams<P>::k_t pixel_jitter(const GeometryRegisters<P>& r, int px, int py) {
+  using G = GeometryParams<P>;
+  typename G::k_t j = 0;
+  if (r.jitter) j.range(G::tf - 1, 0) = ref::jitter_raw(px, py, G::tf);
+  return j;
+}
+
 // §1, perspective camera: direction, rsqrt unit, step vector, clip.
 template <PrecisionProfile P>
 RaySetup<P> ray_setup_perspective(
@@ -311,7 +326,7 @@ RaySetup<P> ray_setup_perspective(
   pixel_direction<P>(r, x, y, d);
   normalize_direction<P>(d, seed, u);
   step_vector<P>(r, u, s);
-  return clip_ray<P>(r, r.E, s);
+  return clip_ray<P>(r, r.E, s, pixel_jitter<P>(r, px, py));
 }
 
 // §1, parallel camera: no rsqrt unit (u = U).
@@ -329,7 +344,7 @@ RaySetup<P> ray_setup_parallel(const GeometryRegisters<P>& r, int px, int py) {
   }
   step_vector<P>(r, u, s);
   pixel_origin<P>(r, x, y, o);
-  return clip_ray<P>(r, o, s);
+  return clip_ray<P>(r, o, s, pixel_jitter<P>(r, px, py));
 }
 
 // §1, either camera (the register file says which).
@@ -368,6 +383,7 @@ GeometryRegisters<P> load_geometry_registers(const bittrue::FrameRegisters& f) {
   using G = GeometryParams<P>;
   GeometryRegisters<P> r;
   r.perspective = f.perspective;
+  r.jitter = f.jitter;
   [[maybe_unused]] register_loop : for (int k = 0; k < 3; ++k) {
     const auto i = static_cast<std::size_t>(k);
     r.A[k] = from_raw_bits<typename G::dir_t>(f.A[i]);

@@ -88,6 +88,12 @@ std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs
   }
   f->compositor = compositor_registers<P>(fs.regs);
   f->mode = frame_mode(fs.regs.mode);
+  if constexpr (U.space_leaping) {
+    if (fs.leap) load_leap<P>(*fs.leap, f->leap, f->minmax, engine);
+  } else if (fs.leap) {
+    throw Error(engine + ": the design has no space-leaping unit, the frame asks for "
+                "render.space_leaping = true (it was elaborated for another scene)");
+  }
   return f;
 }
 

@@ -130,6 +130,25 @@ struct BankAccess {
   unsigned parity;                                  // (i0x&1) | (i0y&1)<<1 | (i0z&1)<<2
 };
 
+// §3.1-3.2 along axis k: the position clamped into [LO, HI] (cp) and the
+// cell's base voxel i0 = min(floor(cp), dim - 2) (0 if dim = 1). Space leaping
+// (hls/space_leaping_unit.hpp) finds a sample's block from the same i0.
+template <PrecisionProfile P>
+typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
+                                                const typename GeometryParams<P>::pos_t& pk, int k,
+                                                typename InterpolationParams<P>::cpos_t& cp) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  using G = GeometryParams<P>;
+  typename G::pos_t c = pk;
+  if (c < r.LO[k]) c = r.LO[k];
+  if (c > r.HI[k]) c = r.HI[k];
+  cp = c;  // exact: 0 <= c < 2^a
+  // floor(p) <= HI <= dim - 1.
+  typename G::coord_t i0 = cp;  // floor (truncation of a non-negative value)
+  if (i0 == r.LAST[k] && i0 != 0u) i0 = i0 - 1u;
+  return i0;
+}
+
 template <PrecisionProfile P>
 BankAccess<P> address_generator(const GeometryRegisters<P>& r,
                                 const typename GeometryParams<P>::pos_t p[3]) {
@@ -141,14 +160,8 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
   acc.parity = 0;
   [[maybe_unused]] axis_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
-    // §3.1 clamp into [LO, HI].
-    typename G::pos_t c = p[k];
-    if (c < r.LO[k]) c = r.LO[k];
-    if (c > r.HI[k]) c = r.HI[k];
-    const typename I::cpos_t cp = c;  // exact: 0 <= c < 2^a
-    // §3.2 i0 = min(floor(p), dim - 2) (0 if dim = 1): floor(p) <= HI <= dim - 1.
-    typename G::coord_t i0 = cp;  // floor (truncation of a non-negative value)
-    if (i0 == r.LAST[k] && i0 != 0u) i0 = i0 - 1u;
+    typename I::cpos_t cp;
+    const typename G::coord_t i0 = sample_cell<P>(r, p[k], k, cp);  // §3.1-3.2
     const typename I::frac_t f = cp - i0;  // exact, in [0, 1]
     acc.fq[k] = f;                         // Q_RND(f, wb)
     odd[k] = i0[0];

@@ -23,6 +23,7 @@ struct Units {
   bool compositor = true;       // over operator [§7.1-7.2]
   bool ert = true;              // termination comparator [§7.3]
   bool mip = true;              // maximum register and grey multiply [§7 MIP]
+  bool space_leaping = true;    // min-max block memory, prefix table, leap search (docs/leaping.md)
   friend constexpr bool operator==(const Units&, const Units&) = default;
 };
 
@@ -39,7 +40,8 @@ constexpr bool can_shade(const Units& u) { return can_composite(u) && u.reflecta
 // A design must be able to draw something, and a ray needs a direction.
 constexpr bool consistent(const Units& u) {
   return (can_mip(u) || can_composite(u)) && (u.perspective || u.parallel_origin) &&
-         (!u.reflectance_map || u.gradients) && (!u.ert || can_composite(u));
+         (!u.reflectance_map || u.gradients) && (!u.ert || can_composite(u)) &&
+         (!u.space_leaping || can_composite(u));  // leaping skips samples the TF makes empty
 }
 static_assert(consistent(kAllUnits));
 

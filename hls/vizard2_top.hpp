@@ -23,6 +23,7 @@
 #include "hls/interpolation_processor.hpp"
 #include "hls/reflectance_map.hpp"
 #include "hls/shader.hpp"
+#include "hls/space_leaping_unit.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "hls/units.hpp"
@@ -47,6 +48,11 @@ struct FrameState {
   [[no_unique_address]] UnitState<U.reflectance_map, ReflectanceMap<P>> reflectance;
   CompositorRegisters<P> compositor;
   FrameMode mode;  // among the modes the units allow (can_mip, can_composite, can_shade)
+  // Space leaping (hls/space_leaping_unit.hpp): registers, prefix table and the
+  // min-max block memory, loaded when the volume is (the blocks) and with the
+  // classification table (the prefix counts).
+  [[no_unique_address]] UnitState<U.space_leaping, LeapRegisters<P>> leap;
+  [[no_unique_address]] UnitState<U.space_leaping, MinMaxMemory<P>> minmax;
 };
 
 // §1 for the cameras the design has: a one-camera design instantiates only its
@@ -69,12 +75,20 @@ struct NullTracer {
   void ray(const Ray&) {}
   template <class... Args>
   void sample(const Args&...) {}
+  void skip(std::uint64_t) {}
 };
 
-// One ray through the whole pipeline; `samples` counts the samples it took.
-// Units the design lacks are cut at compile time: a MIP-only design has no
-// classification, shading or compositing here, a design without MIP no
-// maximum register, one without ERT no comparator.
+// Counts the samples space leaping skipped (render_rows' statistics).
+struct SkipCounter : NullTracer {
+  std::uint64_t skipped = 0;
+  void skip(std::uint64_t run) { skipped += run; }
+};
+
+// One ray through the whole pipeline; `samples` counts the samples it took
+// (tracer.skip those space leaping skipped). Units the design lacks are cut at
+// compile time: a MIP-only design has no classification, shading or
+// compositing here, a design without MIP no maximum register, one without ERT
+// no comparator, one without space leaping no min-max memory or leap search.
 template <PrecisionProfile P, Units U, class Banks, class Tracer = NullTracer>
 OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, int py,
                         std::uint64_t& samples, Tracer& tracer) {
@@ -118,7 +132,15 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
     }
     return true;
   };
-  march_ray<P>(f.geometry, banks, ray, per_sample);
+  bool leaped = false;
+  if constexpr (U.space_leaping) {
+    if (f.leap.enabled && !mip) {
+      auto skip = [&tracer](std::uint64_t run) { tracer.skip(run); };
+      march_ray_leaping<P>(f.geometry, f.leap, f.minmax, banks, ray, per_sample, skip);
+      leaped = true;
+    }
+  }
+  if (!leaped) march_ray<P>(f.geometry, banks, ray, per_sample);
   if constexpr (can_mip(U)) {
     if (mip) acc = mip_pixel<P>(peak, f.compositor);
   }
@@ -130,8 +152,8 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
 // ranges on several host threads; the synthesized top calls it for the frame.
 template <PrecisionProfile P, Units U, class Banks>
 void render_rows(const FrameState<P, U>& f, const Banks& banks, int width, int y0, int y1,
-                 OutputPixel<P>* fb, std::uint64_t* samples) {
-  NullTracer none;
+                 OutputPixel<P>* fb, std::uint64_t* samples, std::uint64_t* skipped = nullptr) {
+  SkipCounter none;
   std::uint64_t taken = 0;
   [[maybe_unused]] row_loop : for (int y = y0; y < y1; ++y) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 8192 avg = 256)
@@ -141,6 +163,7 @@ void render_rows(const FrameState<P, U>& f, const Banks& banks, int width, int y
     }
   }
   *samples = taken;
+  if (skipped) *skipped = none.skipped;
 }
 
 // The synthesizable top: the frame state and the 8 voxel banks in external

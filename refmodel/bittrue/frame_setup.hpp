@@ -7,10 +7,13 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "refmodel/precision/profile.hpp"
 #include "refmodel/render/raycaster.hpp"
+#include "refmodel/render/space_leaping.hpp"
 #include "refmodel/scene/scene.hpp"
 
 namespace voxcast::bittrue {
@@ -34,6 +37,7 @@ struct FrameRegisters {
   Raw RM = 0;                     // 1 / max_stored, dir_frac_bits (MIP)
   bool ert_enabled = true;
   Raw ert_threshold = 0;          // acc_bits
+  bool jitter = false;            // render.jitter: start offset (t_frac_bits) per pixel
 };
 
 // One voxel word (docs/pipeline.md §3.4).
@@ -55,6 +59,16 @@ struct ClassEntry {
   std::uint32_t ka = 0, kd = 0, ks = 0;  // k_bits
 };
 
+// Space leaping (docs/leaping.md, hls/space_leaping_unit.hpp): the volume's
+// min-max blocks (stored values; the value field holds them << value_shift) and
+// the prefix count over the classification table's opacity.
+struct LeapTables {
+  std::shared_ptr<const ref::MinMaxBlocks> blocks;
+  int value_shift = 0;
+  std::vector<std::uint32_t> nonzero_prefix;  // 2^tf_addr_bits + 1: entries below i with alpha != 0
+};
+std::vector<std::uint32_t> nonzero_prefix(const std::vector<ClassEntry>& table);
+
 struct FrameSetup {
   PrecisionProfile profile;
   FrameRegisters regs;
@@ -62,6 +76,7 @@ struct FrameSetup {
   std::vector<ClassEntry> class_table;   // 2^tf_addr_bits entries (§4)
   std::vector<std::uint32_t> rm_diffuse;   // rm_entries(profile), rm_int_bits.rm_frac_bits (§5)
   std::vector<std::uint32_t> rm_specular;  // likewise
+  std::optional<LeapTables> leap;          // render.space_leaping (never in MIP)
 };
 
 // Voxel values enter the value field scaled to its full range (docs/pipeline.md

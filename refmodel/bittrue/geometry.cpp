@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "refmodel/bittrue/quantize.hpp"
+#include "refmodel/render/space_leaping.hpp"
 
 namespace voxcast::bittrue {
 
@@ -87,6 +88,8 @@ BtRay bt_ray_setup(const PrecisionProfile& pr, const FrameRegisters& r,
     any = true;
   }
   k_in = std::max(k_in, 0.0);
+  // render.jitter: the first sample J·2^-tf of a step later (exact, tf bits).
+  if (r.jitter) k_in += std::ldexp(static_cast<double>(ref::jitter_raw(px, py, tf)), -tf);
   ray.hit = any && inside && k_in <= k_out;
   if (!ray.hit) return ray;
   // §1.6.

@@ -1,5 +1,6 @@
 #include "refmodel/bittrue/raycaster.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "refmodel/parallel.hpp"
@@ -22,7 +23,43 @@ FrameSetup make_frame_setup(const PrecisionProfile& profile, const ref::Scene& s
   // A MIP or unshaded scene instantiates no shading unit: no reflectance maps.
   if (scene.render.mode == ref::RenderMode::Shaded)
     make_reflectance_maps(profile, inputs.shading, fs.rm_diffuse, fs.rm_specular);
+  if (scene.render.space_leaping && scene.render.mode != ref::RenderMode::Mip) {
+    LeapTables t;
+    t.blocks = inputs.leap ? inputs.leap->blocks
+                           : std::make_shared<const ref::MinMaxBlocks>(ref::make_min_max_blocks(
+                                 *inputs.volume.volume, ref::leap_block_log2(scene.render.leap_block)));
+    t.value_shift = value_shift(profile, *inputs.volume.volume);
+    t.nonzero_prefix = nonzero_prefix(fs.class_table);
+    fs.leap = std::move(t);
+  }
   return fs;
+}
+
+std::vector<std::uint32_t> nonzero_prefix(const std::vector<ClassEntry>& table) {
+  std::vector<std::uint32_t> prefix(table.size() + 1, 0);
+  for (std::size_t i = 0; i < table.size(); ++i)
+    prefix[i + 1] = prefix[i] + (table[i].alpha != 0 ? 1u : 0u);
+  return prefix;
+}
+
+bool bt_block_empty(const FrameSetup& fs, std::size_t block) {
+  const LeapTables& t = *fs.leap;
+  const double lo = std::ldexp(t.blocks->vmin[block], t.value_shift);
+  const double hi = std::ldexp(t.blocks->vmax[block], t.value_shift);
+  const auto a_lo = static_cast<std::size_t>(bt_class_address(fs.profile, lo));
+  const auto a_hi = static_cast<std::size_t>(bt_class_address(fs.profile, hi));
+  return t.nonzero_prefix[a_hi + 1] == t.nonzero_prefix[a_lo];
+}
+
+bool bt_skips(const FrameSetup& fs, const std::array<double, 3>& pos) {
+  const ref::MinMaxBlocks& b = *fs.leap->blocks;
+  std::array<int, 3> bc{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double c = std::clamp(pos[k], static_cast<double>(fs.regs.LO[k]),
+                                static_cast<double>(fs.regs.HI[k]));
+    bc[k] = ref::cell_base(c, fs.regs.dims[k]) >> b.block_log2;
+  }
+  return bt_block_empty(fs, b.index(bc[0], bc[1], bc[2]));
 }
 
 const char* to_string(Unit u) {
@@ -60,7 +97,8 @@ Divergence first_divergence(const RayTrace& a, const RayTrace& b) {
 }
 
 std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory& memory, int px,
-                                         int py, RayTrace* trace, std::uint64_t* samples) {
+                                         int py, RayTrace* trace, std::uint64_t* samples,
+                                         std::uint64_t* skipped) {
   const PrecisionProfile& p = fs.profile;
   const BtRay ray = bt_ray_setup(fs, px, py);
   if (trace) {
@@ -73,16 +111,22 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
       trace->step = ray.s;
     }
   }
-  std::uint64_t taken = 0;
+  std::uint64_t taken = 0, leapt = 0;
   std::array<std::uint32_t, 4> out{0, 0, 0, 0};
   if (ray.hit) {
     const bool mip = fs.regs.mode == ref::RenderMode::Mip;
     const bool shaded = fs.regs.mode == ref::RenderMode::Shaded;
+    const bool leap = fs.leap && !mip;
     BtAccumulator acc;
     double peak = 0.0;
     std::array<double, 3> pos = ray.p0;
     for (std::uint64_t j = 0; j < ray.n; ++j) {
       if (j > 0) pos = bt_step(pos, ray.s);
+      // A sample in an empty block classifies transparent: skipped unread.
+      if (leap && bt_skips(fs, pos)) {
+        ++leapt;
+        continue;
+      }
       ++taken;
       const BtSample s = bt_interpolate(p, fs.regs, memory, pos);
       SampleTrace st;
@@ -115,6 +159,7 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
   }
   if (trace) trace->out = out;
   if (samples) *samples = taken;
+  if (skipped) *skipped = leapt;
   return out;
 }
 
@@ -122,13 +167,15 @@ ref::QuantImage bt_render_image(const FrameSetup& fs, const VoxelMemory& memory,
                                 ref::FrameStats* stats) {
   ref::QuantImage img(fs.regs.width, fs.regs.height, fs.profile.out_bits);
   std::vector<std::uint64_t> row_samples(static_cast<std::size_t>(img.height), 0);
+  std::vector<std::uint64_t> row_skipped(static_cast<std::size_t>(img.height), 0);
   ref::parallel_for(
       img.height,
       [&](int y) {
         for (int x = 0; x < img.width; ++x) {
-          std::uint64_t n = 0;
-          img.at(x, y) = bt_cast_ray(fs, memory, x, y, nullptr, &n);
+          std::uint64_t n = 0, skipped = 0;
+          img.at(x, y) = bt_cast_ray(fs, memory, x, y, nullptr, &n, &skipped);
           row_samples[static_cast<std::size_t>(y)] += n;
+          row_skipped[static_cast<std::size_t>(y)] += skipped;
         }
       },
       threads);
@@ -136,6 +183,7 @@ ref::QuantImage bt_render_image(const FrameSetup& fs, const VoxelMemory& memory,
     *stats = ref::FrameStats{};
     stats->rays = static_cast<std::uint64_t>(img.width) * static_cast<std::uint64_t>(img.height);
     for (std::uint64_t n : row_samples) stats->samples += n;
+    for (std::uint64_t n : row_skipped) stats->samples_skipped += n;
   }
   return img;
 }

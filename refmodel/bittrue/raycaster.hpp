@@ -53,10 +53,18 @@ struct Divergence {
 // The first unit, in pipeline order and sample order, whose outputs differ.
 Divergence first_divergence(const RayTrace& a, const RayTrace& b);
 
-// One pixel. `trace` (optional) receives every sample's unit outputs.
+// One pixel. `trace` (optional) receives every sample's unit outputs;
+// `samples` counts the samples read, `skipped` those space leaping skipped.
 std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& setup, const VoxelMemory& memory,
                                          int px, int py, RayTrace* trace = nullptr,
-                                         std::uint64_t* samples = nullptr);
+                                         std::uint64_t* samples = nullptr,
+                                         std::uint64_t* skipped = nullptr);
+
+// Space leaping (setup.leap set): whether the block with index `block` is
+// empty (hls::block_empty), and whether the sample at `pos` lies in an empty
+// block (hls::block_address, then block_empty).
+bool bt_block_empty(const FrameSetup& setup, std::size_t block);
+bool bt_skips(const FrameSetup& setup, const std::array<double, 3>& pos);
 
 // The whole frame, rows over `threads` workers (bit-identical for any count).
 ref::QuantImage bt_render_image(const FrameSetup& setup, const VoxelMemory& memory,

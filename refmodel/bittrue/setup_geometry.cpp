@@ -130,6 +130,7 @@ FrameRegisters make_frame_registers(const PrecisionProfile& p,
   r.RM = quantize_rnd(1.0 / std::ldexp(volume.max_stored(), value_shift(p, volume)), df);
   r.ert_enabled = in.settings.ert_threshold < 1.0;
   r.ert_threshold = quantize_rnd(std::min(in.settings.ert_threshold, 1.0), p.acc_bits);
+  r.jitter = in.settings.jitter_bits > 0;  // render.jitter, at this profile's t_frac_bits
   return r;
 }
 

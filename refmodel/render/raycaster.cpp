@@ -134,23 +134,63 @@ std::uint32_t sample_count(const Segment& s, double step) {
   return static_cast<std::uint32_t>(std::floor(s.length() / step)) + 1u;
 }
 
+// --- Beyond the papers: space leaping and jitter (docs/leaping.md) ------------
+
+LeapBlocks make_leap_blocks(std::shared_ptr<const MinMaxBlocks> blocks,
+                            const TransferFunction& tf_stored) {
+  LeapBlocks l;
+  l.empty.resize(blocks->count());
+  for (std::size_t i = 0; i < l.empty.size(); ++i)
+    l.empty[i] = tf_stored.max_alpha(blocks->vmin[i], blocks->vmax[i]) <= 0.0 ? 1 : 0;
+  l.blocks = std::move(blocks);
+  return l;
+}
+
+bool LeapBlocks::skips(const Vec3& p) const {
+  const MinMaxBlocks& b = *blocks;
+  const int lb = b.block_log2;
+  return empty[b.index(cell_base(p.x, b.dims[0]) >> lb, cell_base(p.y, b.dims[1]) >> lb,
+                       cell_base(p.z, b.dims[2]) >> lb)] != 0;
+}
+
+double pixel_jitter(const RenderSettings& settings, int x, int y) {
+  return std::ldexp(static_cast<double>(jitter_raw(x, y, settings.jitter_bits)),
+                    -settings.jitter_bits);
+}
+
+namespace {
+// Samples at t_enter + (k + jitter)·step for k = 0 .. floor((length - jitter·step)/step);
+// none when the jitter moves the first past the exit. jitter = 0: sample_count.
+std::uint32_t jittered_count(const Segment& s, double step, double jitter) {
+  if (jitter == 0.0) return sample_count(s, step);
+  const double rest = s.length() - jitter * step;
+  if (rest < 0.0) return 0;
+  return static_cast<std::uint32_t>(std::floor(rest / step)) + 1u;
+}
+}  // namespace
+
 glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const ShadingSetup& shading,
-                    const RenderSettings& settings, const Ray& ray, RayStats* stats) {
+                    const RenderSettings& settings, const Ray& ray, RayStats* stats,
+                    const LeapBlocks* leap, double jitter) {
   RayStats local;
   RayStats& st = stats ? *stats : local;
   st = RayStats{};
   const std::optional<Segment> seg = clip(ray, rv.world_box);
   if (!seg) return glm::dvec4(0.0);
   st.hit = true;
-  const std::uint32_t n = sample_count(*seg, settings.step);
+  const std::uint32_t n = jittered_count(*seg, settings.step, jitter);
   const bool ert = settings.ert_threshold < 1.0;
+  // Stepping: positions from the entry point, converted to index space and
+  // clamped against rounding at the box faces.
+  const auto position = [&](std::uint32_t k) {
+    return glm::clamp(ray.at(seg->t_enter + (k + jitter) * settings.step) / rv.world_scale,
+                      rv.index_box.lo, rv.index_box.hi);
+  };
 
   if (settings.mode == RenderMode::Mip) {
     double peak = 0.0;
     for (std::uint32_t k = 0; k < n; ++k) {
-      const Vec3 p = glm::clamp(ray.at(seg->t_enter + k * settings.step) / rv.world_scale,
-                                rv.index_box.lo, rv.index_box.hi);
-      peak = std::max(peak, interpolate(*rv.volume, *rv.gradients, p).value);
+      peak = std::max(peak, interpolate(*rv.volume, *rv.gradients, position(k)).value);
       ++st.samples;
     }
     const double gray = peak / rv.volume->max_stored();
@@ -159,10 +199,12 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
 
   Accumulator acc;
   for (std::uint32_t k = 0; k < n; ++k) {
-    // Stepping: positions from the entry point, converted to index space and
-    // clamped against rounding at the box faces.
-    const Vec3 p = glm::clamp(ray.at(seg->t_enter + k * settings.step) / rv.world_scale,
-                              rv.index_box.lo, rv.index_box.hi);
+    const Vec3 p = position(k);
+    // A sample in an empty block classifies transparent: skipped unread.
+    if (leap && leap->skips(p)) {
+      ++st.skipped;
+      continue;
+    }
     const Sample s = interpolate(*rv.volume, *rv.gradients, p);
     ++st.samples;
     const Classified c = tf.classify(s.value);
@@ -193,6 +235,11 @@ RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
   in.settings.mode = scene.render.mode;
   in.settings.step = 1.0 / scene.render.oversampling;
   in.settings.ert_threshold = scene.render.ert_threshold;
+  if (scene.render.jitter) in.settings.jitter_bits = scene.precision.t_frac_bits;
+  if (scene.render.space_leaping && scene.render.mode != RenderMode::Mip)
+    in.leap = make_leap_blocks(std::make_shared<const MinMaxBlocks>(make_min_max_blocks(
+                                   volume, leap_block_log2(scene.render.leap_block))),
+                               in.tf);
   return in;
 }
 
@@ -206,9 +253,11 @@ Image render_image(const RenderInputs& in, int threads, FrameStats* stats) {
         for (int x = 0; x < img.width; ++x) {
           RayStats rs;
           img.at(x, y) = cast_ray(in.volume, in.tf, in.shading, in.settings,
-                                  primary_ray(in.camera, x, y), &rs);
+                                  primary_ray(in.camera, x, y), &rs,
+                                  in.leap ? &*in.leap : nullptr, pixel_jitter(in.settings, x, y));
           fs.rays += 1;
           fs.samples += rs.samples;
+          fs.samples_skipped += rs.skipped;
           fs.rays_hit += rs.hit ? 1 : 0;
           fs.rays_terminated_early += rs.terminated_early ? 1 : 0;
         }
@@ -221,6 +270,7 @@ Image render_image(const RenderInputs& in, int threads, FrameStats* stats) {
       stats->rays += r.rays;
       stats->rays_hit += r.rays_hit;
       stats->rays_terminated_early += r.rays_terminated_early;
+      stats->samples_skipped += r.samples_skipped;
     }
   }
   return img;

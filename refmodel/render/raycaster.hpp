@@ -10,11 +10,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "refmodel/math/geometry.hpp"
 #include "refmodel/render/camera.hpp"
 #include "refmodel/render/image.hpp"
+#include "refmodel/render/space_leaping.hpp"
 #include "refmodel/scene/scene.hpp"
 #include "refmodel/volume/gradients.hpp"
 #include "refmodel/volume/transfer_function.hpp"
@@ -98,6 +101,7 @@ void composite(Accumulator& acc, const Vec3& color, double alpha);
 // --- The whole ray -------------------------------------------------------------
 struct RayStats {
   std::uint32_t samples = 0;
+  std::uint32_t skipped = 0;  // samples space leaping skipped (not in `samples`)
   bool hit = false;
   bool terminated_early = false;
 };
@@ -106,13 +110,33 @@ struct RenderSettings {
   RenderMode mode = RenderMode::Shaded;
   double step = 1.0;            // sampling distance, world units (1/oversampling)
   double ert_threshold = 0.98;  // >= 1 disables early ray termination
+  int jitter_bits = 0;          // render.jitter: start offset resolution (0 = off)
 };
+
+// Space leaping in the reference (docs/leaping.md): the volume's min-max
+// blocks and, per block, whether the transfer function is transparent over
+// the block's value range (TransferFunction::max_alpha == 0).
+struct LeapBlocks {
+  std::shared_ptr<const MinMaxBlocks> blocks;
+  std::vector<std::uint8_t> empty;
+
+  // Whether the sample at clamped index-space position p lies in an empty block.
+  bool skips(const Vec3& p) const;
+};
+LeapBlocks make_leap_blocks(std::shared_ptr<const MinMaxBlocks> blocks,
+                            const TransferFunction& tf_stored);
 
 // Samples at t_k = t_enter + k*step for k = 0 .. floor((t_exit - t_enter)/step).
 std::uint32_t sample_count(const Segment& s, double step);
 
+// `leap`: skip samples in empty blocks (null: no leaping; MIP never leaps).
+// `jitter`: the first sample's offset along the ray in steps, in [0, 1).
 glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const ShadingSetup& shading,
-                    const RenderSettings& settings, const Ray& ray, RayStats* stats = nullptr);
+                    const RenderSettings& settings, const Ray& ray, RayStats* stats = nullptr,
+                    const LeapBlocks* leap = nullptr, double jitter = 0.0);
+
+// The jitter of pixel (x, y) in steps for `settings` (0 without render.jitter).
+double pixel_jitter(const RenderSettings& settings, int x, int y);
 
 // --- The whole image -------------------------------------------------------------
 struct FrameStats {
@@ -120,6 +144,7 @@ struct FrameStats {
   std::uint64_t rays = 0;
   std::uint64_t rays_hit = 0;
   std::uint64_t rays_terminated_early = 0;
+  std::uint64_t samples_skipped = 0;  // by space leaping (not in `samples`)
 };
 
 struct RenderInputs {
@@ -128,6 +153,7 @@ struct RenderInputs {
   ShadingSetup shading;
   RenderSettings settings;
   CameraFrame camera;
+  std::optional<LeapBlocks> leap;  // render.space_leaping
 };
 
 RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,

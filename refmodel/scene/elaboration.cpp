@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 
+#include "refmodel/render/space_leaping.hpp"
+
 namespace voxcast::ref {
 
 namespace {
@@ -111,9 +113,31 @@ Elaboration elaborate(const PrecisionProfile& profile, RenderMode mode, Projecti
 }
 
 Elaboration elaborate(const Scene& scene, const Volume& volume, const GradientField& gradients) {
-  return elaborate(scene.precision, scene.render.mode, scene.camera.projection,
-                   scene.render.ert_threshold, stored_transfer_function(scene, volume),
-                   data_range(volume, gradients));
+  Elaboration e = elaborate(scene.precision, scene.render.mode, scene.camera.projection,
+                            scene.render.ert_threshold, stored_transfer_function(scene, volume),
+                            data_range(volume, gradients));
+  elaborate_options(e, scene.render, volume.dims);
+  return e;
+}
+
+void elaborate_options(Elaboration& e, const RenderDesc& render, const std::array<int, 3>& dims) {
+  e.leap_block = render.leap_block;
+  if (!render.space_leaping) {
+    e.omitted.push_back({"space_leaping", "render.space_leaping = false: every sample is read, "
+                                          "no min-max block memory (docs/leaping.md)"});
+  } else if (render.mode == RenderMode::Mip) {
+    e.omitted.push_back({"space_leaping", "render.mode = mip: every sample can be the maximum, "
+                                          "none is skipped (docs/leaping.md)"});
+  } else {
+    e.space_leaping = true;
+    e.leap_blocks = 1;
+    const int lb = leap_block_log2(render.leap_block);
+    for (const int n : dims) e.leap_blocks *= (std::max(n - 2, 0) >> lb) + 1;
+  }
+  e.jitter = render.jitter;
+  if (!e.jitter)
+    e.omitted.push_back({"jitter", "render.jitter = false: every ray starts at its entry, no "
+                                   "pixel hash in the ray set-up (docs/leaping.md)"});
 }
 
 }  // namespace voxcast::ref

@@ -13,6 +13,7 @@
 // and the report can read it without the scene or the volume.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,11 @@ struct Elaboration {
   int class_color_fields = 3;   // r, g, b fields that vary over the table (the rest: registers)
   bool class_alpha_varies = true;
   int class_k_fields = 0;       // ka, kd, ks vary over the table? (one material: 0, registers)
+  // Beyond the papers (docs/leaping.md), set by the scene overload below.
+  bool space_leaping = false;   // min-max block memory, prefix table, leaping stepper
+  int leap_block = 8;           // cells per block edge
+  long long leap_blocks = 0;    // blocks the volume needs (the min-max memory's depth)
+  bool jitter = false;          // per-pixel start offset hash in the ray set-up
   std::vector<Omission> omitted;
 };
 
@@ -67,7 +73,11 @@ Elaboration elaborate(const PrecisionProfile& profile, RenderMode mode, Projecti
                       double ert_threshold, const TransferFunction& stored_tf,
                       const DataRange& range);
 
-// The same for a scene and its loaded volume.
+// The same for a scene and its loaded volume (with elaborate_options).
 Elaboration elaborate(const Scene& scene, const Volume& volume, const GradientField& gradients);
+
+// Adds render.space_leaping (block memory sized for a volume of `dims`) and
+// render.jitter to `e`, or their omissions.
+void elaborate_options(Elaboration& e, const RenderDesc& render, const std::array<int, 3>& dims);
 
 }  // namespace voxcast::ref

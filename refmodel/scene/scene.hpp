@@ -55,6 +55,12 @@ struct RenderDesc {
   glm::dvec3 background{0.0};
   int frames = 1;               // frames along camera.path
   int threads = 0;              // 0 = all cores
+  // Beyond the papers (docs/leaping.md): skip samples in blocks of
+  // leap_block^3 cells whose values all classify transparent (min-max blocks),
+  // and start each ray a per-pixel hashed fraction of a step late.
+  bool space_leaping = false;
+  int leap_block = 8;           // cells per block edge: 4, 8, 16, 32 or 64
+  bool jitter = false;
 };
 
 enum class LightType { Directional, Headlight };

@@ -39,7 +39,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
       {"camera", {"projection", "eye", "center", "up", "fov_deg", "height", "stereo_deg", "path"}},
       {"camera.path[]", {"eye", "center", "up"}},
       {"render", {"width", "height", "mode", "oversampling", "ert_threshold", "background",
-                  "frames", "threads", "algorithm"}},
+                  "frames", "threads", "algorithm", "space_leaping", "leap_block", "jitter"}},
       {"lights[]", {"type", "direction", "intensity"}},
       // VIRIM (docs/heidelberg.md).
       {"heidelberg", {"diffuse_0", "diffuse_45", "specular_45", "luminosity", "light",
@@ -117,6 +117,14 @@ class TableReader {
     const double v = as_number(key, *n);
     check_range(key, n, v, lo, hi, lo_open, hi_open);
     return v;
+  }
+
+  bool boolean(const std::string& key, bool def) const {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    const auto v = n->value_exact<bool>();
+    if (!v) fail(key, "must be true or false, not " + type_name(*n));
+    return *v;
   }
 
   int integer(const std::string& key, int def, int lo, int hi) const {
@@ -436,6 +444,11 @@ void read_render(const TableReader& r, RenderDesc& d) {
   d.background = r.vec3("background", d.background, 0.0, 1.0);
   d.frames = r.integer("frames", d.frames, 1, 100000);
   d.threads = r.integer("threads", d.threads, 0, 1024);
+  d.space_leaping = r.boolean("space_leaping", d.space_leaping);
+  d.leap_block = r.integer("leap_block", d.leap_block, 4, 64);
+  if ((d.leap_block & (d.leap_block - 1)) != 0)
+    r.fail("leap_block", "= " + std::to_string(d.leap_block) + " must be a power of two (4..64)");
+  d.jitter = r.boolean("jitter", d.jitter);
 }
 
 void read_lights(const TableReader& root, std::vector<Light>& lights) {
@@ -687,7 +700,10 @@ std::string scene_to_toml(const Scene& s) {
                      {"ert_threshold", s.render.ert_threshold},
                      {"background", to_array(s.render.background)},
                      {"frames", s.render.frames},
-                     {"threads", s.render.threads}};
+                     {"threads", s.render.threads},
+                     {"space_leaping", s.render.space_leaping},
+                     {"leap_block", s.render.leap_block},
+                     {"jitter", s.render.jitter}};
   toml::array lights;
   for (const Light& l : s.lights) {
     toml::table t{{"type", to_string(l.type)}, {"intensity", l.intensity}};

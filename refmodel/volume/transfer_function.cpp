@@ -49,6 +49,13 @@ Classified TransferFunction::classify(double value) const {
   return Classified{color, alpha, material_.ka, material_.kd, material_.ks};
 }
 
+double TransferFunction::max_alpha(double lo, double hi) const {
+  double m = std::max(classify(lo).alpha, classify(hi).alpha);
+  for (const TfPoint& p : points_)
+    if (p.value >= lo && p.value <= hi) m = std::max({m, p.alpha, classify(p.value).alpha});
+  return m;
+}
+
 TfInterpolation parse_tf_interpolation(const std::string& name) {
   if (name == "ramp") return TfInterpolation::Ramp;
   if (name == "binary") return TfInterpolation::Binary;

@@ -57,6 +57,11 @@ class TransferFunction {
   // range the end points' values hold.
   Classified classify(double value) const;
 
+  // The largest opacity classify() gives over [lo, hi] (lo <= hi): the end
+  // values and every control point inside, where a piecewise linear or step
+  // function takes its extremes. Space leaping's emptiness test.
+  double max_alpha(double lo, double hi) const;
+
   const std::vector<TfPoint>& points() const { return points_; }
   TfInterpolation interpolation() const { return interpolation_; }
   const Material& material() const { return material_; }

@@ -40,6 +40,7 @@ std::ostream& operator<<(std::ostream& os, const UnitLatencies& l) {
 
 UnitLatencies elaborate_latencies(UnitLatencies l, const ElaboratedUnits& units) {
   if (!units.perspective) l.ray_setup = std::max(1, l.ray_setup - kRsqrtStages);
+  if (!units.leaping) l.leap_lookup = 0;
   if (units.mip) {
     l.classification = 0;
     l.shading = 0;

@@ -44,6 +44,15 @@ struct UnitLatencies {
   int classification = 2;
   // Reflectance-map address, table read, shader multiplies (§5-6).
   int shading = 4;
+  // Space leaping (docs/leaping.md), only in a design built with it. Each
+  // sample's block look-up (min-max RAM read, two prefix-table reads and a
+  // subtraction) runs beside the address generator: `leap_lookup` more clocks
+  // to the requests. A leap over an empty block holds its ray's issue for
+  // `leap` clocks: the look-up, then the binary search of hls::leap_run, whose
+  // ten compare stages (LeapParams::leap_bits) run five to a clock after the
+  // look-up (an assumption of this model; every leap costs the same).
+  int leap_lookup = 2;
+  int leap = 4;
   // The compositor's accumulation is a one-clock recurrence (§7): one sample
   // per clock of the same ray.
 };
@@ -60,6 +69,7 @@ struct ElaboratedUnits {
   bool mip = false;
   bool shaded = true;
   bool perspective = true;
+  bool leaping = false;
 };
 // Stages of the rsqrt unit inside UnitLatencies::ray_setup (docs/pipeline.md
 // §1.2, one multiply or add per clock): d·d (multiply, sum) 2, leading-zero

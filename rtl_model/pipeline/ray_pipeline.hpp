@@ -79,9 +79,11 @@ class RayPipeline {
         mapping_(mapping),
         mip_(frame.mode == hls::FrameMode::Mip),
         shaded_(frame.mode == hls::FrameMode::Shaded),
+        leap_(frame.leap.enabled && frame.mode != hls::FrameMode::Mip),
         free_("ray.free", checked(config.ray_slots, "ray_slots")),
         issue_q_("ray.issue", static_cast<std::size_t>(config.ray_slots)),
         miss_("setup.miss", depth(config_.latency.ray_setup)),
+        leapt_("issue.leapt", static_cast<std::size_t>(config.ray_slots)),
         interp_("interpolation.out", depth(config_.latency.interpolation)),
         class_("classification.out", depth(config_.latency.classification)),
         shade_("shading.out", depth(config_.latency.shading)),
@@ -128,9 +130,10 @@ class RayPipeline {
   // contains (elaborate_latencies): MIP, unshaded and parallel frames skip the
   // stages of the units they leave out.
   static PipelineConfig elaborated(PipelineConfig c, const hls::FrameState<P>& frame) {
-    c.latency = elaborate_latencies(c.latency, {frame.mode == hls::FrameMode::Mip,
-                                                frame.mode == hls::FrameMode::Shaded,
-                                                frame.geometry.perspective});
+    c.latency = elaborate_latencies(
+        c.latency, {frame.mode == hls::FrameMode::Mip, frame.mode == hls::FrameMode::Shaded,
+                    frame.geometry.perspective,
+                    frame.leap.enabled && frame.mode != hls::FrameMode::Mip});
     return c;
   }
 
@@ -200,6 +203,8 @@ class RayPipeline {
     int x = 0, y = 0;
     Cycle ready_at = 0;
     std::uint64_t n = 0, issued = 0, composited = 0;
+    std::uint64_t next = 0;  // the next sample's index: issued + skipped by space leaping
+    bool issue_done = false; // every sample issued or skipped
     int outstanding = 0;     // samples issued and not yet composited or dropped
     bool finished = false;   // last sample composited, or early ray termination
     bool in_issue = false;   // in the address generator's queue
@@ -345,7 +350,7 @@ class RayPipeline {
         if (e.k != s.composited) order_error("compositor", slot, e.k, s.composited);
         ++s.composited;
         ++stats_.samples;
-        bool done = s.composited == s.n;
+        bool done = s.issue_done && s.composited == s.issued;
         if (mip_) {
           hls::mip_update<P>(s.peak, e.value);
         } else if (e.alpha != 0) {
@@ -366,6 +371,16 @@ class RayPipeline {
         }
         try_free(slot);
       }
+    }
+    // A ray whose last samples were leapt over after the others composited.
+    if (!pushed && leapt_.valid() && out_.ready()) {
+      const int slot = leapt_.pop();
+      Slot& s = slots_[static_cast<std::size_t>(slot)];
+      out_.push(Pixel{s.x, s.y, hls::output<P>(s.acc)});
+      s.finished = true;
+      pushed = true;
+      ++events_;
+      try_free(slot);
     }
     // The background pixels of missed rays share the output port.
     if (!pushed && miss_.valid() && miss_.front().ready <= now && out_.ready()) {
@@ -486,6 +501,7 @@ class RayPipeline {
       ++stats_.stalls.issue_no_ray;
       return;
     }
+    if (leap_ && try_leap(now, i, s)) return;
     if (buf_count_ == buf_.size()) {
       ++stats_.stalls.issue_buffer_full;
       return;
@@ -510,7 +526,7 @@ class RayPipeline {
     ++buf_count_;
     for (std::size_t d = 0; d < layout::kDimms; ++d) {
       TimedRequest t;
-      t.ready = now + config_.latency.address;
+      t.ready = now + config_.latency.address + config_.latency.leap_lookup;
       t.request.id = tail;
       t.request.kind = sdram::RequestKind::kRead;
       t.request.address = mapping_.map(b.coord[d]);
@@ -520,15 +536,42 @@ class RayPipeline {
     ++s.outstanding;
     ++s.issued;
     ++stats_.samples_issued;
+    ++s.next;
     hls::step_position<P>(s.p, s.s);
-    if (s.issued == s.n) {
-      issue_q_.pop();
-      s.in_issue = false;
-      burst_count_ = 0;
+    if (s.next == s.n) {
+      end_issue(i, s);
     } else if (config_.issue_burst > 0 && ++burst_count_ >= config_.issue_burst) {
       burst_count_ = 0;
       issue_q_.push(issue_q_.pop());
     }
+  }
+
+  // Space leaping: if the front ray's next sample lies in an empty block, leap
+  // to the first sample after the block (hls::leap_run) instead of issuing; the
+  // ray's issue waits latency.leap clocks. True if it leapt.
+  bool try_leap(Cycle now, int i, Slot& s) {
+    typename hls::LeapParams<P>::bcoord_t b[3];
+    if (!hls::sample_block_empty<P>(f_.geometry, f_.leap, f_.minmax, s.p, b)) return false;
+    const std::uint64_t run = hls::leap_run<P>(f_.geometry, f_.leap, s.p, s.s, s.n - s.next, b);
+    hls::step_position<P>(s.p, s.s);
+    s.next += run;
+    s.ready_at = now + static_cast<Cycle>(std::max(config_.latency.leap, 1));
+    stats_.samples_skipped += run;
+    ++stats_.leaps;
+    ++events_;
+    if (s.next == s.n) end_issue(i, s);
+    return true;
+  }
+
+  // The front ray `i` has no sample left to issue. If none of its samples is
+  // in flight either (they composited, or all were leapt over), its pixel
+  // leaves through leapt_; otherwise the compositor ends it.
+  void end_issue(int i, Slot& s) {
+    issue_q_.pop();
+    s.in_issue = false;
+    s.issue_done = true;
+    burst_count_ = 0;
+    if (s.outstanding == 0 && !s.finished) leapt_.push(i);
   }
 
   void setup(Cycle now) {
@@ -575,6 +618,7 @@ class RayPipeline {
     free_.sample();
     issue_q_.sample();
     miss_.sample();
+    leapt_.sample();
     for (auto& rq : req_) rq.sample();
     interp_.sample();
     class_.sample();
@@ -600,7 +644,8 @@ class RayPipeline {
 
   // ---- Errors and the end of the frame --------------------------------------------------------
   bool quiet() const {
-    if (buf_count_ != 0 || free_.size() != slots_.size() || !miss_.empty() || !interp_.empty() ||
+    if (buf_count_ != 0 || free_.size() != slots_.size() || !miss_.empty() || !leapt_.empty() ||
+        !interp_.empty() ||
         !class_.empty() || !shade_.empty() || !out_.empty())
       return false;
     for (const auto& rq : req_)
@@ -654,6 +699,7 @@ class RayPipeline {
     try {
       if (buf_count_ != 0) throw Error("the sample buffer is not empty");
       miss_.expect_drained();
+      leapt_.expect_drained();
       for (const auto& rq : req_) rq.expect_drained();
       interp_.expect_drained();
       class_.expect_drained();
@@ -698,7 +744,7 @@ class RayPipeline {
   layout::Vizard2Layout layout_;
   layout::Vizard2Memory<P> memory_;
   const layout::AddressMapping& mapping_;
-  bool mip_, shaded_;
+  bool mip_, shaded_, leap_;
 
   std::vector<std::pair<int, int>> order_;
   std::size_t next_pixel_ = 0;
@@ -714,6 +760,7 @@ class RayPipeline {
   sim::Fifo<int> free_;     // free ray slots
   sim::Fifo<int> issue_q_;  // rays with samples to issue, oldest first
   sim::Fifo<MissPixel> miss_;
+  sim::Fifo<int> leapt_;  // rays whose pixel is due with nothing left in flight
   std::vector<sim::Fifo<TimedRequest>> req_;
   std::vector<std::unique_ptr<MemoryPort>> ports_;
   std::vector<Buffered> buf_;

@@ -80,6 +80,9 @@ std::ostream& operator<<(std::ostream& os, const RtlStats& s) {
      << s.samples_discarded << " discarded after ERT; " << s.ns_per_sample()
      << " ns/sample (" << s.ns_per_issued_sample() << " per issued), " << s.samples_per_cycle()
      << " samples/cycle\n";
+  if (s.leaps > 0)
+    os << "space leaping: " << s.samples_skipped << " samples skipped in " << s.leaps
+       << " leaps\n";
   os << "memory: row hits " << s.row_hits() << ", misses " << s.row_misses() << ", conflicts "
      << s.row_conflicts() << " (hit rate " << s.row_hit_rate() << "); activates "
      << s.activates() << ", refreshes " << s.refreshes() << "; " << s.bandwidth_mb_s()

@@ -53,6 +53,8 @@ struct RtlStats {
   std::uint64_t samples = 0;        // samples composited (the hls engine's count)
   std::uint64_t samples_issued = 0; // samples read from memory
   std::uint64_t samples_discarded = 0;  // issued beyond an early termination
+  std::uint64_t samples_skipped = 0;    // space leaping: never issued (docs/leaping.md)
+  std::uint64_t leaps = 0;              // space leaping: empty blocks leapt over
   std::array<DimmReport, 4> dimms{};
   StallStats stalls;
   std::vector<NamedFifoStats> fifos;

@@ -31,6 +31,7 @@ namespace hls = voxcast::hls;
 using voxcast::kBalanced;
 
 // The units the elaboration rules give (docs/resources.md, "Elaboration").
+// None of these scenes asks for render.space_leaping: no min-max memory.
 // MIP with a parallel camera: the maximum register only; no direction or
 // rsqrt unit, classification, gradients, reflectance map, shader, over
 // operator or ERT comparator.
@@ -42,7 +43,8 @@ constexpr hls::Units kMipParallel{.perspective = false,
                                   .shader = false,
                                   .compositor = false,
                                   .ert = false,
-                                  .mip = true};
+                                  .mip = true,
+                                  .space_leaping = false};
 // Perspective, unshaded, ERT off: no parallel origin, gradients, reflectance
 // map, ERT comparator or MIP unit.
 constexpr hls::Units kUnshadedNoErt{.perspective = true,
@@ -53,7 +55,8 @@ constexpr hls::Units kUnshadedNoErt{.perspective = true,
                                     .shader = true,
                                     .compositor = true,
                                     .ert = false,
-                                    .mip = false};
+                                    .mip = false,
+                                    .space_leaping = false};
 // Parallel, shaded, ERT on: everything but the perspective units and MIP.
 constexpr hls::Units kShadedParallel{.perspective = false,
                                      .parallel_origin = true,
@@ -63,7 +66,8 @@ constexpr hls::Units kShadedParallel{.perspective = false,
                                      .shader = true,
                                      .compositor = true,
                                      .ert = true,
-                                     .mip = false};
+                                     .mip = false,
+                                     .space_leaping = false};
 
 using Word = hls::InterpolationParams<kBalanced>::packed_word_t;
 
@@ -107,7 +111,7 @@ std::map<std::string, bool> flags_of(const hls::Units& u) {
           {"gradients", u.gradients},           {"classification", u.classification},
           {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
           {"compositor", u.compositor},         {"ert", u.ert},
-          {"mip", u.mip}};
+          {"mip", u.mip},                       {"space_leaping", u.space_leaping}};
 }
 
 std::string read(const fs::path& p) {
