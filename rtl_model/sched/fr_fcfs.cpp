@@ -47,4 +47,19 @@ std::optional<sdram::Decision> FrFcfs::pick(const sdram::SchedulerView& view) {
   return std::nullopt;
 }
 
+sdram::Cycle FrFcfs::wake(const sdram::SchedulerView& view) const {
+  if (view.pending.empty()) return sdram::kNoWake;
+  if (bypasses_of(view.pending.front().request) >= limit_)
+    return earliest_after_now(view, next_command(view, 0), 0);
+  const std::size_t n = std::min(window_, view.pending.size());
+  sdram::Cycle w = sdram::kNoWake;
+  for (std::size_t i = 0; i < n; ++i) {
+    const sdram::Command cmd = next_command(view, i);
+    if (cmd == sdram::Command::kPre && open_row_wanted(view, view.pending[i].request.address.bank, n))
+      continue;
+    w = std::min(w, earliest_after_now(view, cmd, i));
+  }
+  return w;
+}
+
 }  // namespace voxcast::rtl::sched

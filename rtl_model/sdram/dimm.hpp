@@ -136,9 +136,10 @@ class Dimm {
   void set_observer(CommandObserver* o) { observer_ = o; }
 
   // Timing only (see the contract). `bank` is ignored for PREA and REF.
-  Cycle earliest(Command cmd, std::uint32_t bank, Cycle now) const {
-    return gate(cmd, bank, now).earliest;
-  }
+  // earliest() is one look-up in the table compiled as commands issue (see
+  // raise_not_before); gate() scans the table and names the binding row for
+  // messages. Both give the same cycle (tests/rtl/test_sdram_dimm.cpp).
+  Cycle earliest(Command cmd, std::uint32_t bank, Cycle now) const;
   Gate gate(Command cmd, std::uint32_t bank, Cycle now) const;
 
   // Full legality at `now`.
@@ -161,6 +162,15 @@ class Dimm {
   bool check_state(Command cmd, const Address& a, std::string* why) const;
   void apply(Command cmd, const Address& a, Cycle now);
   void close_row(std::uint32_t b, Cycle now);
+  void raise_not_before(Command cmd, std::uint32_t bank, Cycle now);
+  void check_bank_exists(Command cmd, std::uint32_t bank) const;
+
+  // One compiled row of the constraint table: a later command, its scope and delay.
+  struct After {
+    Command next;
+    Scope scope;
+    Cycle cycles;
+  };
 
   DimmConfig config_;
   TimingCycles timing_;
@@ -172,6 +182,12 @@ class Dimm {
   std::vector<std::array<Cycle, kCommandCount>> last_by_bank_;
   std::array<Cycle, kCommandCount> last_by_rank_;
   Cycle last_command_ = kNever;
+  // The table compiled by previous command, and per bank and command (and
+  // for the rank commands) the first cycle every row issued so far allows:
+  // the simulation asks earliest() several times per cycle per DIMM.
+  std::array<std::vector<After>, kCommandCount> after_;
+  std::vector<std::array<Cycle, kCommandCount>> not_before_;
+  std::array<Cycle, kCommandCount> not_before_rank_;
   DimmStats stats_;
   CommandObserver* observer_ = nullptr;
 };
