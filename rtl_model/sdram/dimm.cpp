@@ -140,17 +140,17 @@ bool Dimm::all_banks_idle() const {
 // ---- Timing: the constraint table --------------------------------------------------------
 void Dimm::check_bank_exists(Command cmd, std::uint32_t bank) const {
   if (is_rank_command(cmd) || bank < bank_count()) return;
+  no_such_bank(cmd, bank);
+}
+
+void Dimm::no_such_bank(Command cmd, std::uint32_t bank) const {
   std::ostringstream os;
   os << cmd << ": bank " << bank << " does not exist (the DIMM has " << bank_count() << " banks)";
   throw Error(os.str());
 }
 
-Cycle Dimm::earliest(Command cmd, std::uint32_t bank, Cycle now) const {
-  if (cmd == Command::kNop) return now;
-  check_bank_exists(cmd, bank);
-  const Cycle nb = is_rank_command(cmd) ? not_before_rank_[index_of(cmd)]
-                                        : not_before_[bank][index_of(cmd)];
-  return std::max(now, nb);
+void Dimm::not_a_column_command(Command cmd) {
+  throw Error("Dimm::next_command: " + std::string(name(cmd)) + " is not a column command");
 }
 
 // The rows (cmd -> next, scope, delay) of a command issued at `now`, as
@@ -390,29 +390,6 @@ void Dimm::close_row(std::uint32_t b, Cycle now) {
   stats_.banks[b].open_cycles += now - banks_[b].activated_at;
   ++stats_.banks[b].precharges;
   banks_[b].state = BankState::kIdle;
-}
-
-// ---- Request-level queries ---------------------------------------------------------------
-RowOutcome Dimm::row_outcome(const Address& a) const {
-  const Bank& k = banks_.at(a.bank);
-  if (k.state == BankState::kIdle) return RowOutcome::kMiss;
-  return k.open_row == a.row ? RowOutcome::kHit : RowOutcome::kConflict;
-}
-
-Command Dimm::next_command(Command column_command, const Address& a) const {
-  if (!is_column_command(column_command)) {
-    throw Error("Dimm::next_command: " + std::string(name(column_command)) +
-                " is not a column command");
-  }
-  switch (row_outcome(a)) {
-    case RowOutcome::kHit:
-      return column_command;
-    case RowOutcome::kMiss:
-      return Command::kAct;
-    case RowOutcome::kConflict:
-      return Command::kPre;
-  }
-  return Command::kNop;
 }
 
 }  // namespace voxcast::rtl::sdram
