@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "rtl_model/sdram/scheduler.hpp"
 
@@ -53,6 +54,7 @@ class FrFcfs final : public sdram::CommandScheduler {
   std::uint64_t oldest_id_ = 0;
   sdram::Cycle oldest_arrival_ = sdram::kNever;
   int bypasses_ = 0;
+  std::vector<sdram::Command> next_;  // pick(): each window entry's next command, asked once
 };
 
 }  // namespace voxcast::rtl::sched
