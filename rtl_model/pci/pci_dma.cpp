@@ -133,4 +133,26 @@ ClockedTransfer run_clocked_transfer(const PciConfig& config, const sim::ClockDo
   return r;
 }
 
+std::vector<FrameReadback> double_buffered_readback(const std::vector<Cycle>& render_cycles,
+                                                    const sim::ClockDomain& core,
+                                                    const PciStats& readback) {
+  std::vector<FrameReadback> f(render_cycles.size());
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    FrameReadback& x = f[k];
+    x.render_cycles = render_cycles[k];
+    const double previous_render_end = k >= 1 ? f[k - 1].render_end_s : 0.0;
+    const double buffer_free = k >= 2 ? f[k - 2].readback_end_s : 0.0;
+    x.render_start_s = std::max(previous_render_end, buffer_free);
+    x.stall_s = x.render_start_s - previous_render_end;
+    x.render_end_s =
+        x.render_start_s + static_cast<double>(core.time_of(render_cycles[k])) * 1e-12;
+    x.readback_s = readback.seconds;
+    x.readback_start_s = std::max(x.render_end_s, k >= 1 ? f[k - 1].readback_end_s : 0.0);
+    x.readback_end_s = x.readback_start_s + readback.seconds;
+  }
+  for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    f[k].hidden = f[k].readback_end_s <= f[k + 1].render_end_s;
+  return f;
+}
+
 }  // namespace voxcast::rtl::pci

@@ -70,4 +70,29 @@ ClockedTransfer run_clocked_transfer(const PciConfig& config, const sim::ClockDo
                                      Direction direction, const std::vector<std::uint32_t>& words,
                                      int core_interval = 1, std::size_t fifo_depth = 16);
 
+// A multi-frame run with a double-buffered frame buffer: frame k renders
+// into buffer k mod 2 while the DMA engine reads frame k-1 back from the
+// other. Frame k starts when frame k-1 has rendered and the readback of
+// frame k-2 (its buffer) has ended; the readback of frame k starts when
+// frame k has rendered and the readback of frame k-1 has ended (one DMA
+// engine). A readback is hidden when it ends before the next frame has
+// rendered, so that no frame waits for a buffer; the last frame's readback
+// has no next frame to hide behind.
+struct FrameReadback {
+  Cycle render_cycles = 0;       // core clocks of the frame's rendering
+  double render_start_s = 0.0;   // when the frame starts rendering
+  double render_end_s = 0.0;
+  double readback_start_s = 0.0;
+  double readback_end_s = 0.0;
+  double readback_s = 0.0;       // the readback's duration (the clocked transfer)
+  double stall_s = 0.0;          // the frame waited this long for its buffer
+  bool hidden = false;
+};
+
+// `render_cycles` per frame in `core` clocks; `readback` the clocked
+// transfer of one frame (run_clocked_transfer).
+std::vector<FrameReadback> double_buffered_readback(const std::vector<Cycle>& render_cycles,
+                                                    const sim::ClockDomain& core,
+                                                    const PciStats& readback);
+
 }  // namespace voxcast::rtl::pci

@@ -130,3 +130,33 @@ TEST(PciClocked, ASlowCoreCostsWaitStatesNotData) {
 
 }  // namespace
 }  // namespace voxcast::test
+
+namespace voxcast::test {
+namespace {
+
+// Double-buffered readback: frames of 5 ms with a 2.09 ms readback overlap
+// completely (each readback ends 2.09 ms into the next frame); frames of
+// 1 ms with a 2.09 ms readback cannot: from frame 2 on each frame waits for
+// its buffer, and the schedule settles at one frame per readback.
+TEST(PciClocked, DoubleBufferedReadbackHidesBehindLongFramesOnly) {
+  const auto core = rtl::sim::clocks::pc100();
+  rtl::pci::PciStats rb;
+  rb.seconds = 2.09e-3;
+  const auto slow = rtl::pci::double_buffered_readback({500000, 500000, 500000}, core, rb);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_DOUBLE_EQ(slow[k].render_start_s, 5e-3 * static_cast<double>(k));
+    EXPECT_DOUBLE_EQ(slow[k].readback_end_s, 5e-3 * static_cast<double>(k + 1) + 2.09e-3);
+    EXPECT_EQ(slow[k].stall_s, 0.0);
+  }
+  EXPECT_TRUE(slow[0].hidden);
+  EXPECT_TRUE(slow[1].hidden);
+  EXPECT_FALSE(slow[2].hidden);  // the last frame: nothing to hide behind
+  const auto fast = rtl::pci::double_buffered_readback({100000, 100000, 100000, 100000}, core, rb);
+  EXPECT_FALSE(fast[0].hidden);
+  EXPECT_EQ(fast[1].stall_s, 0.0);
+  EXPECT_NEAR(fast[2].stall_s, 1e-3 + 2.09e-3 - 2e-3, 1e-12);  // frame 0's readback ends at 3.09 ms
+  EXPECT_NEAR(fast[3].render_start_s - fast[2].render_start_s, 2.09e-3, 1e-12);
+}
+
+}  // namespace
+}  // namespace voxcast::test
