@@ -47,7 +47,7 @@ class PciDmaEngine {
   PciConfig config_;
   bool read_;                    // host to card (the card reads host memory)
   std::uint64_t phases_left_;    // data phases of the whole transfer
-  std::uint64_t host_index_ = 0; // next host word (upload) 
+  std::uint64_t host_index_ = 0; // next host word (upload)
   int burst_left_ = 0;
   Phase phase_ = Phase::kDone;
   int left_ = 0;                 // clocks left in the current phase (not kData)
