@@ -40,19 +40,23 @@ std::string frame_name(int f) {
   return os.str();
 }
 
-void write_csv(const std::string& path, const std::vector<FlythroughFrame>& frames) {
+void write_csv(const std::string& path, const std::vector<FlythroughFrame>& frames,
+               const std::vector<rtl::pci::FrameReadback>& readback) {
   std::ofstream out(path);
   if (!out) throw Error(path + ": cannot write");
   out << "frame,eye_x,eye_y,eye_z,center_x,center_y,center_z,cycles,fps,ns_per_sample,"
-         "samples,samples_issued,rays,rays_hit,rays_ert,row_hit_rate,activates,refreshes\n";
+         "samples,samples_issued,rays,rays_hit,rays_ert,row_hit_rate,activates,refreshes,"
+         "readback_ms,stall_ms,readback_hidden\n";
   out << std::setprecision(10);
   for (const FlythroughFrame& f : frames) {
     const auto& s = f.stats;
+    const rtl::pci::FrameReadback& rb = readback[static_cast<std::size_t>(f.index)];
     out << f.index << ',' << f.pose.eye.x << ',' << f.pose.eye.y << ',' << f.pose.eye.z << ','
         << f.pose.center.x << ',' << f.pose.center.y << ',' << f.pose.center.z << ',' << s.cycles
         << ',' << s.fps() << ',' << s.ns_per_sample() << ',' << s.samples << ','
         << s.samples_issued << ',' << s.rays << ',' << s.rays_hit << ',' << s.rays_ert << ','
-        << s.row_hit_rate() << ',' << s.activates() << ',' << s.refreshes() << '\n';
+        << s.row_hit_rate() << ',' << s.activates() << ',' << s.refreshes() << ','
+        << 1e3 * rb.readback_s << ',' << 1e3 * rb.stall_s << ',' << (rb.hidden ? 1 : 0) << '\n';
   }
 }
 
@@ -93,7 +97,8 @@ void write_json(const std::string& path, const ref::Scene& scene, const Flythrou
                {"tables", pci_json(r.host.tables)},
                {"image_readback", pci_json(r.host.image)}};
   nlohmann::json frames = nlohmann::json::array();
-  for (const FlythroughFrame& f : r.frames)
+  for (const FlythroughFrame& f : r.frames) {
+    const rtl::pci::FrameReadback& rb = r.readback[static_cast<std::size_t>(f.index)];
     frames.push_back({{"frame", f.index},
                       {"eye", {f.pose.eye.x, f.pose.eye.y, f.pose.eye.z}},
                       {"center", {f.pose.center.x, f.pose.center.y, f.pose.center.z}},
@@ -103,11 +108,27 @@ void write_json(const std::string& path, const ref::Scene& scene, const Flythrou
                       {"samples", f.stats.samples},
                       {"rays_ert", f.stats.rays_ert},
                       {"row_hit_rate", f.stats.row_hit_rate()},
+                      {"readback_ms", 1e3 * rb.readback_s},
+                      {"stall_ms", 1e3 * rb.stall_s},
+                      {"readback_hidden", rb.hidden},
                       {"image", f.image}});
+  }
   j["frames"] = frames;
   std::ofstream out(path);
   if (!out) throw Error(path + ": cannot write");
   out << j.dump(2) << "\n";
+}
+
+// One frame's readback on the clocked PCI model: the frame buffer's RGBA8
+// words, one per core clock, across the asynchronous FIFO to the DMA engine.
+rtl::pci::PciStats clocked_readback(const ref::Scene& scene, const rtl::RtlConfig& config) {
+  const auto words = static_cast<std::size_t>(scene.render.width) *
+                     static_cast<std::size_t>(scene.render.height) * kReadbackBytesPerPixel / 4;
+  std::vector<std::uint32_t> frame(words);
+  for (std::size_t i = 0; i < words; ++i) frame[i] = static_cast<std::uint32_t>(i);
+  return rtl::pci::run_clocked_transfer(rtl::pci::PciConfig{}, config.pipeline.dimm.clock,
+                                        rtl::pci::Direction::kCardToHost, frame)
+      .pci;
 }
 
 }  // namespace
@@ -164,8 +185,12 @@ FlythroughResult run_flythrough(const ref::Scene& scene, const FlythroughOptions
           static_cast<std::uint64_t>(d[2]),
       rtl::pci::UploadFormat::kRawVoxels, scene.render.width, scene.render.height,
       kReadbackBytesPerPixel);
+  r.clocked_readback = clocked_readback(scene, config);
+  std::vector<rtl::sim::Cycle> cycles;
+  for (const FlythroughFrame& f : r.frames) cycles.push_back(static_cast<rtl::sim::Cycle>(f.stats.cycles));
+  r.readback = rtl::pci::double_buffered_readback(cycles, config.pipeline.dimm.clock, r.clocked_readback);
   r.csv = (dir / "frames.csv").string();
-  write_csv(r.csv, r.frames);
+  write_csv(r.csv, r.frames, r.readback);
   r.json = (dir / "frames.json").string();
   write_json(r.json, scene, r);
   return r;
@@ -178,21 +203,26 @@ void print_flythrough(std::ostream& os, const ref::Scene& scene, const Flythroug
      << scene.camera.path.size() << " keyframes, " << scene.render.width << "x"
      << scene.render.height << ", oversampling " << scene.render.oversampling << ", ERT "
      << scene.render.ert_threshold << ", profile " << scene.precision_name << "\n";
-  os << "frame    cycles      frames/s  ns/sample  M samples  ERT rays  row hits\n";
+  os << "frame    cycles      frames/s  ns/sample  M samples  ERT rays  row hits  readback\n";
   for (const FlythroughFrame& f : r.frames) {
     const auto& s = f.stats;
+    const rtl::pci::FrameReadback& rb = r.readback[static_cast<std::size_t>(f.index)];
     const double rays = static_cast<double>(std::max<std::uint64_t>(s.rays, 1));
     os << std::setw(5) << f.index << "  " << std::setw(10) << s.cycles << "  " << std::setw(8)
        << s.fps() << "  " << std::setw(9) << s.ns_per_sample() << "  " << std::setw(9)
        << static_cast<double>(s.samples) / 1e6 << "  " << std::setw(7)
        << 100.0 * static_cast<double>(s.rays_ert) / rays << "%  " << std::setw(7)
-       << 100.0 * s.row_hit_rate() << "%\n";
+       << 100.0 * s.row_hit_rate() << "%  " << 1e3 * rb.readback_s << " ms "
+       << (rb.hidden ? "hidden" : f.index + 1 == static_cast<int>(r.frames.size()) ? "last" : "NOT hidden");
+    if (rb.stall_s > 0.0) os << ", frame waited " << 1e3 * rb.stall_s << " ms";
+    os << "\n";
   }
   os << "card     " << fps.min << " / " << fps.mean << " / " << fps.max
      << " frames/s (min / mean / max), " << fps.at_least_20 << " of " << r.frames.size()
      << " frames at >= 20 frames/s\n"
      << "pci      volume upload " << r.host.volume.seconds << " s once; image readback "
-     << 1e3 * r.host.image.seconds << " ms per frame (overlaps the next frame)\n"
+     << 1e3 * r.host.image.seconds << " ms per frame (closed form; clocked "
+     << 1e3 * r.clocked_readback.seconds << " ms, double-buffered behind the next frame)\n"
      << "host     " << r.wall_seconds << " s to simulate\n"
      << "wrote    " << r.animation << ", " << r.csv << ", " << r.json << ", frame_*.png\n";
 }

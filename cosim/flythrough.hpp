@@ -12,6 +12,7 @@
 
 #include "refmodel/scene/scene.hpp"
 #include "rtl_model/pci/pci_bus.hpp"
+#include "rtl_model/pci/pci_dma.hpp"
 #include "rtl_model/pipeline/stats.hpp"
 
 namespace voxcast::cosim {
@@ -32,6 +33,12 @@ struct FlythroughFrame {
 struct FlythroughResult {
   std::vector<FlythroughFrame> frames;
   rtl::pci::HostTransfers host;  // volume upload once, tables, readback per frame
+  // The readback on the clocked PCI model (pci/pci_dma.hpp: the frame
+  // buffer's words cross to the 33 MHz domain through an asynchronous FIFO)
+  // and, per frame, its overlap with the next frame's rendering (double-
+  // buffered frame buffer): readback time, stall, hidden or not.
+  rtl::pci::PciStats clocked_readback;
+  std::vector<rtl::pci::FrameReadback> readback;
   std::string animation, csv, json;
   double wall_seconds = 0.0;     // host time to simulate every frame
 };

@@ -6,11 +6,13 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 #include <toml++/toml.h>
 
 #include "refmodel/error.hpp"
 #include "refmodel/precision/presets.hpp"
+#include "refmodel/scene/rtl_keys.hpp"
 
 namespace voxcast::ref {
 namespace {
@@ -28,9 +30,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
   static const std::map<std::string, std::vector<std::string>> s = {
       {"", {"volume", "classification", "camera", "render", "lights", "precision", "rtl",
             "heidelberg"}},
-      {"rtl", {"board", "scheduler", "reorder_window", "starvation_limit", "refresh",
-               "refresh_postpone", "sdram", "layout", "brick", "traversal", "tile", "ray_slots", "issue_burst",
-               "sample_buffer", "queue_depth", "return_depth"}},
+      {"rtl", rtl_key_names()},
       {"precision", precision_keys()},
       {"volume", {"source", "dims", "type", "spacing", "endian", "crop", "gradient"}},
       {"volume.crop", {"lo", "hi"}},
@@ -715,23 +715,13 @@ std::string scene_to_toml(const Scene& s) {
   const PrecisionProfile base = preset_profile(preset);
   for (const ProfileField& f : profile_fields())
     if (s.precision.*f.member != base.*f.member) precision.insert(f.name, s.precision.*f.member);
-  const RtlDesc& d = s.rtl;
-  const toml::table rtl{{"board", d.board},
-                        {"scheduler", d.scheduler},
-                        {"reorder_window", d.reorder_window},
-                        {"starvation_limit", d.starvation_limit},
-                        {"refresh", d.refresh},
-                        {"refresh_postpone", d.refresh_postpone},
-                        {"sdram", d.sdram},
-                        {"layout", d.layout},
-                        {"brick", to_array(d.brick)},
-                        {"traversal", d.traversal},
-                        {"tile", d.tile},
-                        {"ray_slots", d.ray_slots},
-                        {"issue_burst", d.issue_burst},
-                        {"sample_buffer", d.sample_buffer},
-                        {"queue_depth", d.queue_depth},
-                        {"return_depth", d.return_depth}};
+  toml::table rtl;
+  for_each_rtl_key(s.rtl, [&rtl](std::string_view key, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::array<int, 3>>)
+      rtl.insert(key, to_array(value));
+    else
+      rtl.insert(key, value);
+  });
   toml::table root{{"volume", volume}, {"classification", classification},
                          {"camera", camera}, {"render", render},
                          {"lights", lights}, {"precision", precision},

@@ -35,6 +35,9 @@ struct CalibrationResult {
   RtlStats stats;
   double setup_seconds = 0.0;     // host: volume, gradients, FrameSetup, VoxelMemory
   double simulate_seconds = 0.0;  // host: rtl_render
+  // Host CPU time of rtl_render (one thread): the figure to compare on a
+  // shared machine, where the wall time depends on the other jobs.
+  double simulate_cpu_seconds = 0.0;
   // Simulated composited samples per host second.
   double samples_per_host_second() const;
 };

@@ -20,7 +20,7 @@ std::unique_ptr<MemoryPort> make_memory_port(MemoryModel model, const std::strin
     return std::make_unique<FastInOrderPort>(dimm, controller);
   return std::make_unique<ReferencePort>(
       std::make_unique<sdram::Controller>(dimm, std::move(s), std::move(r), controller),
-      skip_idle_ticks && in_order_eager, controller.queue_depth, controller.return_depth);
+      skip_idle_ticks);
 }
 
 }  // namespace voxcast::rtl::pipeline

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "rtl_model/sdram/scheduler.hpp"
 
@@ -31,12 +32,20 @@ class FrFcfs final : public sdram::CommandScheduler {
   explicit FrFcfs(const sdram::SchedulerParams& params);
   std::string_view name() const override { return "FR-FCFS"; }
   std::optional<sdram::Decision> pick(const sdram::SchedulerView& view) override;
+  // The earliest cycle over the commands pick() considers: the oldest
+  // request's when it is starved, else every request's in the window except
+  // a PRE that would close a row the window still hits.
+  sdram::Cycle wake(const sdram::SchedulerView& view) const override;
 
   // Bypasses of the current oldest request so far.
   int bypasses() const { return bypasses_; }
 
  private:
   void track_oldest(const sdram::Request& oldest);
+  // Bypasses of `oldest` so far (0 for a request not yet tracked).
+  int bypasses_of(const sdram::Request& oldest) const {
+    return oldest.id == oldest_id_ && oldest.arrival == oldest_arrival_ ? bypasses_ : 0;
+  }
   std::optional<sdram::Decision> decide(const sdram::SchedulerView& view, std::size_t i,
                                         sdram::Command cmd);
 
@@ -45,6 +54,7 @@ class FrFcfs final : public sdram::CommandScheduler {
   std::uint64_t oldest_id_ = 0;
   sdram::Cycle oldest_arrival_ = sdram::kNever;
   int bypasses_ = 0;
+  std::vector<sdram::Command> next_;  // pick(): each window entry's next command, asked once
 };
 
 }  // namespace voxcast::rtl::sched

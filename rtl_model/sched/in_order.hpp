@@ -20,6 +20,8 @@ class InOrderOpenPage final : public sdram::CommandScheduler {
  public:
   std::string_view name() const override { return "in-order open page"; }
   std::optional<sdram::Decision> pick(const sdram::SchedulerView& view) override;
+  // When the oldest request's next command becomes legal.
+  sdram::Cycle wake(const sdram::SchedulerView& view) const override;
 };
 
 }  // namespace voxcast::rtl::sched

@@ -29,4 +29,17 @@ std::optional<sdram::Decision> LookAheadActivation::pick(const sdram::SchedulerV
   return std::nullopt;
 }
 
+sdram::Cycle LookAheadActivation::wake(const sdram::SchedulerView& view) const {
+  if (view.pending.empty()) return sdram::kNoWake;
+  sdram::Cycle w = earliest_after_now(view, next_command(view, 0), 0);
+  const std::size_t n = std::min(window_, view.pending.size());
+  for (std::size_t j = 1; j < n; ++j) {
+    if (!first_to_its_bank(view, j)) continue;
+    const sdram::Command cmd = next_command(view, j);
+    if (sdram::is_column_command(cmd)) continue;
+    return std::min(w, earliest_after_now(view, cmd, j));  // pick() looks no further
+  }
+  return w;
+}
+
 }  // namespace voxcast::rtl::sched

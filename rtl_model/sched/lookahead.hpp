@@ -30,6 +30,9 @@ class LookAheadActivation final : public sdram::CommandScheduler {
   explicit LookAheadActivation(const sdram::SchedulerParams& params);
   std::string_view name() const override { return "look-ahead activation"; }
   std::optional<sdram::Decision> pick(const sdram::SchedulerView& view) override;
+  // The earlier of the oldest request's next command and the row command of
+  // the one later request pick() would prepare.
+  sdram::Cycle wake(const sdram::SchedulerView& view) const override;
 
  private:
   std::size_t window_;

@@ -17,6 +17,8 @@ class EagerRefresh final : public sdram::RefreshPolicy {
   std::string_view name() const override { return "eager"; }
   bool refresh_now(const sdram::RefreshTracker& tracker, sdram::Cycle now,
                    std::size_t pending_requests) const override;
+  // Nothing happens before the next REF falls due.
+  sdram::Cycle wake(const sdram::RefreshTracker& tracker, sdram::Cycle now) const override;
 };
 
 }  // namespace voxcast::rtl::sched

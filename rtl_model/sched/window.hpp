@@ -16,10 +16,25 @@ inline sdram::Command next_command(const sdram::SchedulerView& view, std::size_t
 }
 
 // `cmd` for request `i` may go on the bus now (column commands also need a
-// free return slot).
+// free return slot). `cmd` is the request's next command, so the bank state
+// allows it and the address exists (the Controller checked it on push); one
+// command per cycle holds as the Controller asks once per cycle; what is left
+// is the timing table, one look-up (Dimm::earliest). An overdue refresh or a
+// row open beyond tRAS(max) is not a reason to wait: Dimm::issue rejects the
+// command with its message rather than the scheduler stalling silently.
 inline bool legal_now(const sdram::SchedulerView& view, sdram::Command cmd, std::size_t i) {
   if (sdram::is_column_command(cmd) && !view.column_allowed) return false;
-  return view.dimm.can_issue(cmd, view.pending[i].request.address, view.now);
+  return view.dimm.earliest(cmd, view.pending[i].request.address.bank, view.now) <= view.now;
+}
+
+// The first cycle after view.now at which `cmd` for request `i` could be
+// legal with the banks and column_allowed as they are now
+// (CommandScheduler::wake): the timing table's earliest cycle, or kNoWake
+// for a column command without a free return slot.
+inline sdram::Cycle earliest_after_now(const sdram::SchedulerView& view, sdram::Command cmd,
+                                       std::size_t i) {
+  if (sdram::is_column_command(cmd) && !view.column_allowed) return sdram::kNoWake;
+  return view.dimm.earliest(cmd, view.pending[i].request.address.bank, view.now + 1);
 }
 
 // A request among the first `n` hits the row open in `bank`.

@@ -87,6 +87,15 @@ void Controller::tick(Cycle now) {
   completions_.sample();
 }
 
+Cycle Controller::next_event(Cycle now) const {
+  if (refreshing_) return now + 1;  // the sequence counts its cycles
+  Cycle w = refresh_->wake(dimm_.refresh(), now);
+  if (!in_flight_.empty()) w = std::min(w, in_flight_.front().data.last);
+  if (!pending_.empty())
+    w = std::min(w, scheduler_->wake(SchedulerView{pending_, dimm_, now, column_allowed()}));
+  return std::max(w, now + 1);
+}
+
 bool Controller::step_refresh(Cycle now) {
   if (!refreshing_) {
     if (!refresh_->refresh_now(dimm_.refresh(), now, pending_.size())) return false;

@@ -87,6 +87,12 @@ class Controller {
 
   // One SDRAM clock; cycles strictly increasing.
   void tick(Cycle now);
+  // After tick(now): a cycle > now before which tick() would change nothing
+  // but the tick counters (ControllerStats::cycles, the completions FIFO's
+  // samples), provided no request is pushed and no completion popped
+  // meanwhile: the earliest of a retiring access's last beat, the refresh
+  // policy's and the scheduler's wake() hints; now + 1 while refreshing.
+  Cycle next_event(Cycle now) const;
 
   // Served requests, in data order (valid/ready).
   sim::Fifo<Completion>& completions() { return completions_; }

@@ -1,5 +1,6 @@
 #include "rtl_model/sdram/dimm.hpp"
 
+#include <algorithm>
 #include <ostream>
 #include <sstream>
 #include <utility>
@@ -107,9 +108,14 @@ Dimm::Dimm(DimmConfig config)
       table_(timing_),
       refresh_(timing_.tREFI, config_.refresh_postpone_limit),
       banks_(validated(config_.geometry).banks),
-      last_by_bank_(config_.geometry.banks) {
+      last_by_bank_(config_.geometry.banks),
+      not_before_(config_.geometry.banks) {
   for (auto& last : last_by_bank_) last.fill(kNever);
   last_by_rank_.fill(kNever);
+  for (const Constraint& c : table_.rows())
+    after_[index_of(c.prev)].push_back(After{c.next, c.scope, c.cycles});
+  for (auto& nb : not_before_) nb.fill(kNever);
+  not_before_rank_.fill(kNever);
   stats_.banks.resize(config_.geometry.banks);
   // An open-page controller may leave a row open from just after one REF to
   // the next, which can come as late as the refresh deadline: that span must
@@ -132,15 +138,48 @@ bool Dimm::all_banks_idle() const {
 }
 
 // ---- Timing: the constraint table --------------------------------------------------------
+void Dimm::check_bank_exists(Command cmd, std::uint32_t bank) const {
+  if (is_rank_command(cmd) || bank < bank_count()) return;
+  no_such_bank(cmd, bank);
+}
+
+void Dimm::no_such_bank(Command cmd, std::uint32_t bank) const {
+  std::ostringstream os;
+  os << cmd << ": bank " << bank << " does not exist (the DIMM has " << bank_count() << " banks)";
+  throw Error(os.str());
+}
+
+void Dimm::not_a_column_command(Command cmd) {
+  throw Error("Dimm::next_command: " + std::string(name(cmd)) + " is not a column command");
+}
+
+// The rows (cmd -> next, scope, delay) of a command issued at `now`, as
+// gate() reads them: a rank command on either side binds every bank (the
+// scope of a row after a rank command is not consulted), and a rank command
+// after a bank command sees every bank as "other".
+void Dimm::raise_not_before(Command cmd, std::uint32_t bank, Cycle now) {
+  const bool rank = is_rank_command(cmd);
+  for (const After& r : after_[index_of(cmd)]) {
+    const Cycle at = now + r.cycles;
+    const std::size_t n = index_of(r.next);
+    if (is_rank_command(r.next)) {
+      if (rank || r.scope != Scope::kSameBank)
+        not_before_rank_[n] = std::max(not_before_rank_[n], at);
+    } else if (!rank && r.scope == Scope::kSameBank) {
+      not_before_[bank][n] = std::max(not_before_[bank][n], at);
+    } else {
+      const bool skip_own = !rank && r.scope == Scope::kOtherBank;
+      for (std::uint32_t b = 0; b < bank_count(); ++b)
+        if (!(skip_own && b == bank)) not_before_[b][n] = std::max(not_before_[b][n], at);
+    }
+  }
+}
+
 Gate Dimm::gate(Command cmd, std::uint32_t bank, Cycle now) const {
   Gate g{.earliest = now};
   if (cmd == Command::kNop) return g;
   const bool rank_cmd = is_rank_command(cmd);
-  if (!rank_cmd && bank >= bank_count()) {
-    std::ostringstream os;
-    os << cmd << ": bank " << bank << " does not exist (the DIMM has " << bank_count() << " banks)";
-    throw Error(os.str());
-  }
+  check_bank_exists(cmd, bank);
   for (std::size_t i : table_.rows_before(cmd)) {
     const Constraint& c = table_.rows()[i];
     auto consider = [&](Cycle prev_cycle, std::uint32_t prev_bank) {
@@ -228,10 +267,10 @@ bool Dimm::check(Command cmd, const Address& a, Cycle now, std::string* why) con
       os << state;
     });
   }
-  // Step 5: every row of the constraint table.
-  const Gate gt = gate(cmd, a.bank, now);
-  if (gt.earliest > now) {
+  // Step 5: every row of the constraint table (the scan names the binding row).
+  if (earliest(cmd, a.bank, now) > now) {
     return reject([&](std::ostream& os) {
+      const Gate gt = gate(cmd, a.bank, now);
       const Constraint& c = *gt.binding;
       os << "violates " << c.parameter << " (" << c.prev;
       if (!is_rank_command(c.prev)) os << " to bank " << gt.since_bank;
@@ -337,6 +376,7 @@ void Dimm::apply(Command cmd, const Address& a, Cycle now) {
     case Command::kNop:
       return;
   }
+  raise_not_before(cmd, a.bank, now);
   if (is_rank_command(cmd)) {
     last_by_rank_[index_of(cmd)] = now;
   } else {
@@ -350,29 +390,6 @@ void Dimm::close_row(std::uint32_t b, Cycle now) {
   stats_.banks[b].open_cycles += now - banks_[b].activated_at;
   ++stats_.banks[b].precharges;
   banks_[b].state = BankState::kIdle;
-}
-
-// ---- Request-level queries ---------------------------------------------------------------
-RowOutcome Dimm::row_outcome(const Address& a) const {
-  const Bank& k = banks_.at(a.bank);
-  if (k.state == BankState::kIdle) return RowOutcome::kMiss;
-  return k.open_row == a.row ? RowOutcome::kHit : RowOutcome::kConflict;
-}
-
-Command Dimm::next_command(Command column_command, const Address& a) const {
-  if (!is_column_command(column_command)) {
-    throw Error("Dimm::next_command: " + std::string(name(column_command)) +
-                " is not a column command");
-  }
-  switch (row_outcome(a)) {
-    case RowOutcome::kHit:
-      return column_command;
-    case RowOutcome::kMiss:
-      return Command::kAct;
-    case RowOutcome::kConflict:
-      return Command::kPre;
-  }
-  return Command::kNop;
 }
 
 }  // namespace voxcast::rtl::sdram

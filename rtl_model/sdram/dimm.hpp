@@ -20,6 +20,7 @@
 //   - issue() changes nothing when it throws.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <iosfwd>
@@ -136,8 +137,14 @@ class Dimm {
   void set_observer(CommandObserver* o) { observer_ = o; }
 
   // Timing only (see the contract). `bank` is ignored for PREA and REF.
+  // earliest() is one look-up in the table compiled as commands issue (see
+  // raise_not_before); gate() scans the table and names the binding row for
+  // messages. Both give the same cycle (tests/rtl/test_sdram_dimm.cpp).
   Cycle earliest(Command cmd, std::uint32_t bank, Cycle now) const {
-    return gate(cmd, bank, now).earliest;
+    if (cmd == Command::kNop) return now;
+    if (is_rank_command(cmd)) return std::max(now, not_before_rank_[index_of(cmd)]);
+    if (bank >= bank_count()) no_such_bank(cmd, bank);
+    return std::max(now, not_before_[bank][index_of(cmd)]);
   }
   Gate gate(Command cmd, std::uint32_t bank, Cycle now) const;
 
@@ -153,14 +160,40 @@ class Dimm {
   // Request-level queries for controllers (Ramulator's "prerequisite
   // command"): the row outcome, and the next command a read or write of `a`
   // needs now (ACT, PRE, or the column command itself).
-  RowOutcome row_outcome(const Address& a) const;
-  Command next_command(Command column_command, const Address& a) const;
+  RowOutcome row_outcome(const Address& a) const {
+    const Bank& k = banks_.at(a.bank);
+    if (k.state == BankState::kIdle) return RowOutcome::kMiss;
+    return k.open_row == a.row ? RowOutcome::kHit : RowOutcome::kConflict;
+  }
+  Command next_command(Command column_command, const Address& a) const {
+    if (!is_column_command(column_command)) not_a_column_command(column_command);
+    switch (row_outcome(a)) {
+      case RowOutcome::kHit:
+        return column_command;
+      case RowOutcome::kMiss:
+        return Command::kAct;
+      case RowOutcome::kConflict:
+        return Command::kPre;
+    }
+    return Command::kNop;
+  }
 
  private:
   bool check(Command cmd, const Address& a, Cycle now, std::string* why) const;
   bool check_state(Command cmd, const Address& a, std::string* why) const;
   void apply(Command cmd, const Address& a, Cycle now);
   void close_row(std::uint32_t b, Cycle now);
+  void raise_not_before(Command cmd, std::uint32_t bank, Cycle now);
+  void check_bank_exists(Command cmd, std::uint32_t bank) const;
+  [[noreturn]] void no_such_bank(Command cmd, std::uint32_t bank) const;
+  [[noreturn]] static void not_a_column_command(Command cmd);
+
+  // One compiled row of the constraint table: a later command, its scope and delay.
+  struct After {
+    Command next;
+    Scope scope;
+    Cycle cycles;
+  };
 
   DimmConfig config_;
   TimingCycles timing_;
@@ -172,6 +205,12 @@ class Dimm {
   std::vector<std::array<Cycle, kCommandCount>> last_by_bank_;
   std::array<Cycle, kCommandCount> last_by_rank_;
   Cycle last_command_ = kNever;
+  // The table compiled by previous command, and per bank and command (and
+  // for the rank commands) the first cycle every row issued so far allows:
+  // the simulation asks earliest() several times per cycle per DIMM.
+  std::array<std::vector<After>, kCommandCount> after_;
+  std::vector<std::array<Cycle, kCommandCount>> not_before_;
+  std::array<Cycle, kCommandCount> not_before_rank_;
   DimmStats stats_;
   CommandObserver* observer_ = nullptr;
 };

@@ -80,6 +80,11 @@ class RefreshPolicy {
   virtual std::string_view name() const = 0;
   virtual bool refresh_now(const RefreshTracker& tracker, Cycle now,
                            std::size_t pending_requests) const = 0;
+  // A cycle > now before which refresh_now() stays false as long as nothing
+  // else changes (no REF issued, the pending count unchanged): the
+  // Controller's next-event hint (Controller::next_event). now + 1 is always
+  // correct; a policy that can tell gives a later cycle.
+  virtual Cycle wake(const RefreshTracker& /*tracker*/, Cycle now) const { return now + 1; }
 };
 
 }  // namespace voxcast::rtl::sdram

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -87,6 +88,15 @@ struct SchedulerView {
 //     does that, not the scheduler).
 //   - Schedulers may keep state (a window position, statistics); the
 //     Controller calls pick() with strictly increasing cycles.
+//   - wake(view), asked after a cycle's pick(), is a cycle > view.now before
+//     which pick() would return nothing provided nothing changes meanwhile:
+//     no request arrives, no command issues, no return slot frees (the
+//     Controller's next-event hint, Controller::next_event, lets the
+//     simulation skip the cycles in between). Between such events the banks,
+//     the pending list and column_allowed are fixed, so a command becomes
+//     legal only when the timing table allows it: the earliest cycle over the
+//     commands the policy would consider is exact. view.now + 1 (the
+//     default) is always correct. kNoWake: never, until something changes.
 // Implementations:
 //   sched/in_order.hpp  in-order open page: only the oldest request, its next
 //                       command as soon as it is legal (the VIZARD II
@@ -101,6 +111,10 @@ class CommandScheduler {
   virtual ~CommandScheduler() = default;
   virtual std::string_view name() const = 0;
   virtual std::optional<Decision> pick(const SchedulerView& view) = 0;
+  virtual Cycle wake(const SchedulerView& view) const { return view.now + 1; }
 };
+
+// "Nothing to do until something changes" (CommandScheduler::wake).
+inline constexpr Cycle kNoWake = std::numeric_limits<Cycle>::max() / 4;
 
 }  // namespace voxcast::rtl::sdram

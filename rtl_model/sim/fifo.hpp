@@ -72,7 +72,7 @@ class Fifo {
 
   void push(T value) {
     if (full()) fail("push while full");
-    slots_[(head_ + count_) % slots_.size()] = std::move(value);
+    slots_[wrap(head_ + count_)] = std::move(value);
     ++count_;
     ++stats_.pushes;
     stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
@@ -86,7 +86,7 @@ class Fifo {
   T pop() {
     if (empty()) fail("pop while empty");
     T value = std::move(slots_[head_]);
-    head_ = (head_ + 1) % slots_.size();
+    head_ = wrap(head_ + 1);
     --count_;
     ++stats_.pops;
     return value;
@@ -113,6 +113,10 @@ class Fifo {
   const FifoStats& stats() const { return stats_; }
 
  private:
+  // i mod depth for i < 2 * depth: a compare instead of a division per push
+  // and pop (the pipeline moves several FIFO entries per simulated cycle).
+  std::size_t wrap(std::size_t i) const { return i >= slots_.size() ? i - slots_.size() : i; }
+
   [[noreturn]] void fail(std::string_view what) const {
     std::ostringstream os;
     os << "FIFO '" << name_ << "' (depth " << slots_.size() << "): " << what;

@@ -9,6 +9,8 @@
 
 #include "cosim/cosim.hpp"
 #include "cosim/engines.hpp"
+#include "cosim/rtl_json.hpp"
+#include "refmodel/scene/rtl_keys.hpp"
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
@@ -191,6 +193,35 @@ TEST(Divergence, IdenticalTracesDoNotDiverge) {
   bittrue::bt_cast_ray(f.setup, f.memory, 32, 32, &t);
   EXPECT_FALSE(bittrue::first_divergence(cosim::hls_trace_ray(f.setup, f.memory, 32, 32), t).diverged);
   EXPECT_GT(t.trace.size(), 0u);
+}
+
+}  // namespace
+}  // namespace voxcast::test
+
+namespace voxcast::test {
+namespace {
+
+// The reports' "rtl" object and the written scene's [rtl] table come from the
+// one key list (refmodel/scene/rtl_keys.hpp): every key the reader accepts,
+// with the value the scene set, and the written scene reads back the same.
+TEST(RtlKeys, ReportAndWrittenSceneCarryEveryKeyWithItsValue) {
+  const ref::Scene s = ref::default_scene({"rtl.scheduler=fr-fcfs", "rtl.reorder_window=4",
+                                           "rtl.starvation_limit=9", "rtl.layout=bricked",
+                                           "rtl.brick=[4, 2, 8]", "rtl.ray_slots=32",
+                                           "rtl.queue_depth=12", "rtl.return_depth=6"});
+  const nlohmann::json j = cosim::rtl_desc_json(s.rtl);
+  const std::vector<std::string> names = ref::rtl_key_names();
+  EXPECT_EQ(names.size(), 16u);
+  EXPECT_EQ(j.size(), names.size());
+  for (const std::string& k : names) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j.at("scheduler"), "fr-fcfs");
+  EXPECT_EQ(j.at("reorder_window"), 4);
+  EXPECT_EQ(j.at("starvation_limit"), 9);
+  EXPECT_EQ(j.at("brick"), nlohmann::json::array({4, 2, 8}));
+  EXPECT_EQ(j.at("ray_slots"), 32);
+  EXPECT_EQ(j.at("return_depth"), 6);
+  const ref::Scene t = ref::parse_scene(ref::scene_to_toml(s), "round trip", ".");
+  EXPECT_EQ(cosim::rtl_desc_json(t.rtl), j);
 }
 
 }  // namespace

@@ -96,6 +96,22 @@ TEST(Flythrough, WritesTheAnimationTableAndReport) {
   EXPECT_TRUE(std::filesystem::exists(r.json));
   // The 32^3 volume of one-byte voxels crosses the 33 MHz, 32-bit bus once.
   EXPECT_EQ(r.host.volume.bytes, 32u * 32u * 32u);
+  // The readback on the clocked PCI model takes the closed form's clocks (the
+  // core feeds the crossing faster than the bus drains it), and each frame's
+  // readback is hidden exactly when it ends before the next frame has
+  // rendered (double-buffered frame buffer); the last has no next frame.
+  EXPECT_EQ(r.clocked_readback.cycles, r.host.image.cycles);
+  ASSERT_EQ(r.readback.size(), r.frames.size());
+  for (std::size_t f = 0; f < r.readback.size(); ++f) {
+    const auto& rb = r.readback[f];
+    EXPECT_EQ(rb.render_cycles, static_cast<std::int64_t>(r.frames[f].stats.cycles));
+    EXPECT_DOUBLE_EQ(rb.readback_s, r.host.image.seconds);
+    EXPECT_GE(rb.readback_start_s, rb.render_end_s);
+    if (f + 1 < r.readback.size())
+      EXPECT_EQ(rb.hidden, rb.readback_end_s <= r.readback[f + 1].render_end_s) << f;
+    else
+      EXPECT_FALSE(rb.hidden);
+  }
 }
 
 TEST(Flythrough, SameCyclesAndPixelsForAnyThreadCount) {

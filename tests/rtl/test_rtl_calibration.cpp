@@ -42,7 +42,9 @@ TEST(RtlCalibration, Vizard2Frames) {
     const rtl::bench::CalibrationResult r = rtl::bench::run_calibration(point, config);
     std::cout << "== " << r.name << " (" << point.description << "), " << config << "\n"
               << r.stats << "host: set-up " << r.setup_seconds << " s, simulation "
-              << r.simulate_seconds << " s, " << r.samples_per_host_second() * 1e-6
+              << r.simulate_seconds << " s (" << r.simulate_cpu_seconds << " s of CPU: "
+              << static_cast<double>(r.stats.cycles) / r.simulate_cpu_seconds * 1e-6
+              << " M simulated cycles per CPU second), " << r.samples_per_host_second() * 1e-6
               << " M simulated samples per second\n";
     RecordProperty(r.name + ".ns_per_sample", std::to_string(r.stats.ns_per_sample()));
     RecordProperty(r.name + ".fps", std::to_string(r.stats.fps()));

@@ -219,15 +219,19 @@ TEST(RtlEngine, SameCyclesAndBitsForAnyHostThreadCount) {
 }
 
 // Fast-forward (skipping cycles in which nothing can move) and the
-// event-driven in-order memory port are simulation speed-ups only: against
-// the reference controller ticked every cycle, the same cycles, commands, row
-// outcomes, latencies, stalls and image.
+// event-driven memory ports (the in-order port; every policy's controller
+// ticked at its next events) are simulation speed-ups only: against the
+// reference controller ticked every cycle, the same cycles, commands, row
+// outcomes, latencies, stalls and image, for every scheduling policy.
 TEST(RtlEngine, FastSimulationChangesNothing) {
+  for (const char* policy : {"in-order", "fr-fcfs", "lookahead"})
   for (const char* mode : {"shaded", "mip"}) {
     const RtlFrame f = make_rtl_frame("shepp-logan", 24, 24,
                                       {"precision.profile=vizard2", std::string("render.mode=") + mode,
                                        "render.ert_threshold=0.5"});
     rtl::RtlConfig slow = rtl::vizard2_baseline();
+    slow.scheduler = policy;
+    slow.pipeline.scheduler_params.starvation_limit = 8;
     slow.pipeline.fast_forward = false;
     slow.pipeline.memory_model = rtl::pipeline::MemoryModel::kReference;
     for (int slots : {16, 2}) {
@@ -237,7 +241,7 @@ TEST(RtlEngine, FastSimulationChangesNothing) {
       fast.pipeline.memory_model = rtl::pipeline::MemoryModel::kAuto;
       const rtl::RtlResult a = rtl::rtl_render(f.setup, f.memory, slow);
       const rtl::RtlResult b = rtl::rtl_render(f.setup, f.memory, fast);
-      SCOPED_TRACE(::testing::Message() << mode << ", " << slots << " ray slots");
+      SCOPED_TRACE(::testing::Message() << policy << ", " << mode << ", " << slots << " ray slots");
       EXPECT_EQ(a.image.pixels, b.image.pixels);
       EXPECT_EQ(a.stats.cycles, b.stats.cycles);
       EXPECT_EQ(a.stats.samples_issued, b.stats.samples_issued);

@@ -1,9 +1,11 @@
-// The event-driven in-order port (rtl_model/pipeline/fast_in_order_port.hpp)
-// against the reference Controller with the in-order scheduler and eager
-// refresh: random request streams with bank and row locality, pushed at
-// random cycles and with random consumer back-pressure, must give the same
-// completions (request, row outcome, first command, column command, data
-// window) in the same cycles, and the same statistics.
+// The event-driven memory ports against the reference Controller ticked
+// every cycle: the in-order port (rtl_model/pipeline/fast_in_order_port.hpp)
+// and, for every policy, the reference port ticked only at the controller's
+// next events (reference_port.hpp, CommandScheduler::wake). Random request
+// streams with bank and row locality, pushed at random cycles and with
+// random consumer back-pressure, must give the same completions (request,
+// row outcome, first command, column command, data window) in the same
+// cycles, and the same statistics.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -19,23 +21,26 @@ using rtl::pipeline::MemoryModel;
 using rtl::pipeline::MemoryPort;
 using rtl::sdram::Completion;
 
-struct Run {
+struct Served {
   std::vector<Completion> done;
   std::vector<rtl::sim::Cycle> at;
 };
 
-Run drive(MemoryPort& port, std::uint32_t seed, rtl::sim::Cycle cycles, double pop_rate) {
+// bank_change: the share of requests that move to another bank (with a new
+// row at times), which is what the reordering policies act on.
+Served drive(MemoryPort& port, std::uint32_t seed, rtl::sim::Cycle cycles, double pop_rate,
+          double bank_change = 0.12) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  Run run;
+  Served run;
   std::uint64_t id = 0;
   std::uint32_t bank = 0, row = 0, column = 0;
   for (rtl::sim::Cycle now = 0; now < cycles; ++now) {
     // Requests: mostly the next column, sometimes a new row or bank.
     if (u(rng) < 0.7 && port.ready()) {
       const double r = u(rng);
-      if (r < 0.08) row = static_cast<std::uint32_t>(rng() % 4096);
-      if (r < 0.12) bank = static_cast<std::uint32_t>(rng() % 4);
+      if (r < bank_change * 2 / 3) row = static_cast<std::uint32_t>(rng() % 4096);
+      if (r < bank_change) bank = static_cast<std::uint32_t>(rng() % 4);
       column = (column + 1) % 512;
       port.push(rtl::sdram::Request{id++, rtl::sdram::RequestKind::kRead, {bank, row, column}, now});
     }
@@ -49,13 +54,20 @@ Run drive(MemoryPort& port, std::uint32_t seed, rtl::sim::Cycle cycles, double p
   return run;
 }
 
+// `fast` against `ref` after the same stream.
+void compare_runs(const MemoryPort& ref, const MemoryPort& fast, const Served& a, const Served& b);
+
 void compare(const rtl::sdram::DimmConfig& dimm, const rtl::sdram::ControllerConfig& cc,
              std::uint32_t seed, double pop_rate) {
   const rtl::sim::Cycle cycles = 8000;  // at least three refresh intervals
   auto ref = rtl::pipeline::make_memory_port(MemoryModel::kReference, "in-order", "eager", dimm, cc, false);
   auto fast = rtl::pipeline::make_memory_port(MemoryModel::kAuto, "in-order", "eager", dimm, cc, true);
-  const Run a = drive(*ref, seed, cycles, pop_rate);
-  const Run b = drive(*fast, seed, cycles, pop_rate);
+  const Served a = drive(*ref, seed, cycles, pop_rate);
+  const Served b = drive(*fast, seed, cycles, pop_rate);
+  compare_runs(*ref, *fast, a, b);
+}
+
+void compare_runs(const MemoryPort& ref, const MemoryPort& fast, const Served& a, const Served& b) {
   ASSERT_EQ(a.done.size(), b.done.size());
   ASSERT_GT(a.done.size(), 400u);
   for (std::size_t i = 0; i < a.done.size(); ++i) {
@@ -69,8 +81,8 @@ void compare(const rtl::sdram::DimmConfig& dimm, const rtl::sdram::ControllerCon
     ASSERT_EQ(a.done[i].data.first, b.done[i].data.first);
     ASSERT_EQ(a.done[i].data.last, b.done[i].data.last);
   }
-  const auto& x = ref->controller_stats();
-  const auto& y = fast->controller_stats();
+  const auto& x = ref.controller_stats();
+  const auto& y = fast.controller_stats();
   EXPECT_EQ(x.requests, y.requests);
   EXPECT_EQ(x.row_hits, y.row_hits);
   EXPECT_EQ(x.row_misses, y.row_misses);
@@ -78,8 +90,8 @@ void compare(const rtl::sdram::DimmConfig& dimm, const rtl::sdram::ControllerCon
   EXPECT_EQ(x.command_cycles, y.command_cycles);
   EXPECT_EQ(x.refresh_cycles, y.refresh_cycles);
   EXPECT_EQ(x.latency_sum, y.latency_sum);
-  const auto& p = ref->dimm_stats();
-  const auto& q = fast->dimm_stats();
+  const auto& p = ref.dimm_stats();
+  const auto& q = fast.dimm_stats();
   EXPECT_EQ(p.commands, q.commands);
   EXPECT_EQ(p.refreshes, q.refreshes);
   EXPECT_GE(q.refreshes, 3u);
@@ -89,8 +101,8 @@ void compare(const rtl::sdram::DimmConfig& dimm, const rtl::sdram::ControllerCon
     EXPECT_EQ(p.banks[k].precharges, q.banks[k].precharges);
     EXPECT_EQ(p.banks[k].open_cycles, q.banks[k].open_cycles);
   }
-  EXPECT_EQ(ref->pending(), fast->pending());
-  EXPECT_EQ(ref->in_flight(), fast->in_flight());
+  EXPECT_EQ(ref.pending(), fast.pending());
+  EXPECT_EQ(ref.in_flight(), fast.in_flight());
 }
 
 TEST(FastInOrderPort, EqualsTheReferenceController) {
@@ -113,6 +125,60 @@ TEST(FastInOrderPort, EqualsTheReferenceController) {
   d133.timing = rtl::sdram::presets::pc133_cl3();
   d133.clock = rtl::sim::clocks::pc133();
   compare(d133, rtl::sdram::ControllerConfig{}, 99, 1.0);
+}
+
+// Every policy, event-driven (the reference port ticked at the controller's
+// next events) against the same policy ticked every cycle. FR-FCFS with a
+// starvation limit of 3 so that starved phases occur; a window of 1 and 8.
+TEST(EventDrivenPort, EveryPolicyEqualsTheControllerTickedEveryCycle) {
+  std::uint32_t seed = 500;
+  for (const char* policy : {"in-order", "fr-fcfs", "lookahead"})
+    for (const auto& grade : {rtl::sdram::presets::pc100_cl2(), rtl::sdram::presets::pc100_cl3()})
+      for (int bl : {1, 4})
+        for (std::size_t ret : {std::size_t{1}, std::size_t{8}})
+          for (int window : {1, 8})
+            for (double pop : {1.0, 0.3}) {
+              SCOPED_TRACE(::testing::Message() << policy << " " << grade.name << " BL" << bl
+                                                << " return " << ret << " window " << window
+                                                << " pop " << pop);
+              rtl::sdram::DimmConfig d;
+              d.timing = grade;
+              d.burst_length = bl;
+              const rtl::sdram::ControllerConfig cc{8, ret};
+              const rtl::sdram::SchedulerParams params{.reorder_window = window,
+                                                       .starvation_limit = 3};
+              auto ref = rtl::pipeline::make_memory_port(MemoryModel::kReference, policy, "eager",
+                                                         d, cc, false, params);
+              auto fast = rtl::pipeline::make_memory_port(MemoryModel::kReference, policy, "eager",
+                                                          d, cc, true, params);
+              const Served a = drive(*ref, seed, 8000, pop, 0.5);
+              const Served b = drive(*fast, seed, 8000, pop, 0.5);
+              ++seed;
+              compare_runs(*ref, *fast, a, b);
+              // The event-driven port skipped ticks: it is not the reference ticked every cycle.
+              EXPECT_LT(fast->controller_stats().cycles, ref->controller_stats().cycles);
+            }
+}
+
+// The policies reorder: on these streams FR-FCFS and look-ahead complete
+// requests out of arrival order or earlier than in-order does, so the
+// comparison above is not between three copies of the in-order schedule.
+TEST(EventDrivenPort, ThePoliciesDiffer) {
+  rtl::sdram::DimmConfig d;
+  const rtl::sdram::ControllerConfig cc{8, 8};
+  const rtl::sdram::SchedulerParams params{.reorder_window = 8, .starvation_limit = 64};
+  std::vector<rtl::sim::Cycle> last;
+  for (const char* policy : {"in-order", "fr-fcfs", "lookahead"}) {
+    auto port = rtl::pipeline::make_memory_port(MemoryModel::kReference, policy, "eager", d, cc,
+                                                true, params);
+    const Served r = drive(*port, 7, 8000, 1.0, 0.5);
+    std::vector<rtl::sim::Cycle> cols;
+    for (const Completion& c : r.done) cols.push_back(c.column_command);
+    if (!last.empty()) {
+      EXPECT_NE(cols, last) << policy;
+    }
+    last = cols;
+  }
 }
 
 }  // namespace

@@ -12,6 +12,8 @@
 //  (d) statistics and printing.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -311,6 +313,46 @@ TEST(DimmGeometry, Mt4lsdt864aIs64MBytes) {
   EXPECT_EQ(g.bytes_per_row(), 4096u);
   // VIZARD II: 256^3 voxels, 32 bits each plus the replicated 32 bits, over four DIMMs.
   EXPECT_GE(g.bytes(), 256ull * 256 * 256 * 8 / 4);
+}
+
+}  // namespace
+
+namespace {
+
+// Dimm::earliest answers from the table compiled as commands issue; gate()
+// scans every row against the last command of each kind. On a random legal
+// command sequence (every command kind, every bank, writes and refresh
+// included) both give the same cycle for every command and bank, every cycle.
+TEST(DimmConstraints, CompiledEarliestEqualsTheTableScan) {
+  for (const auto& grade : {presets::pc100_cl2(), presets::pc100_cl3()}) {
+    DimmConfig config;
+    config.timing = grade;
+    config.burst_length = 2;
+    Dimm dimm(config);
+    std::mt19937 rng(11);
+    const std::array kinds{Command::kAct, Command::kRd,   Command::kWr,
+                           Command::kPre, Command::kPrea, Command::kRef};
+    std::uint64_t issued = 0;
+    for (Cycle now = 0; now < 3000; ++now) {
+      for (Command c : kinds)
+        for (std::uint32_t b = 0; b < dimm.bank_count(); ++b)
+          ASSERT_EQ(dimm.earliest(c, b, now), dimm.gate(c, b, now).earliest)
+              << c << " bank " << b << " at " << now;
+      const Command c = kinds[rng() % kinds.size()];
+      const std::uint32_t bank = static_cast<std::uint32_t>(rng() % dimm.bank_count());
+      const std::uint32_t row = dimm.bank(bank).state == BankState::kActive
+                                    ? dimm.bank(bank).open_row
+                                    : static_cast<std::uint32_t>(rng() % 8);
+      const Address a{bank, row, static_cast<std::uint32_t>(rng() % 64)};
+      if (dimm.can_issue(c, a, now)) {
+        dimm.issue(c, a, now);
+        ++issued;
+      }
+    }
+    EXPECT_GT(issued, 500u);
+    EXPECT_GE(dimm.stats().refreshes, 1u);
+    EXPECT_GT(dimm.stats().total().writes, 50u);
+  }
 }
 
 }  // namespace
