@@ -2,11 +2,10 @@
 //  1. Conversions into 532 target types (10 formats x 7 quantization modes x the
 //     overflow modes SAT, SAT_ZERO, SAT_SYM, WRAP with N = 0, 1, 2 and WRAP_SM with
 //     N = 0, 1, 2), from any double (every bit pattern: NaN, inf, denormals, huge)
-//     and from the raw bits of four wide source types, against `model_bits`, an
+//     and from the raw bits of four wide source types, against `model_bits`, the
 //     independent long-double model of /work/shared/fixed-point-semantics.md
-//     sections 2, 3 and 9 (value arithmetic with floorl/fmodl, not the clone's
-//     shifts and masks). Every value here has at most 64 significant bits, so
-//     long double (64-bit mantissa, 15-bit exponent) holds it exactly.
+//     sections 2, 3 and 9 in tests/common/fixed_point_model.hpp (value
+//     arithmetic with floorl/fmodl, not the clone's shifts and masks).
 //  2. The widening `+ - *` of six operand types (section 5): result format and
 //     exact value, then the result assigned into one target per Q mode.
 //  3. The bit-true model's double quantizers (refmodel/bittrue/quantize.hpp:
@@ -25,6 +24,7 @@
 #include "fuzz/targets/targets.hpp"
 #include "hls/fixed_point.hpp"
 #include "refmodel/bittrue/quantize.hpp"
+#include "tests/common/fixed_point_model.hpp"
 
 namespace voxcast::fuzz {
 namespace {
@@ -55,127 +55,13 @@ class Bytes {
   std::size_t pos_ = 0;
 };
 
-// ---- The model ----------------------------------------------------------------------------
-struct Fmt {
-  int w;
-  int i;
-  bool s;
-  q_mode q;
-  o_mode o;
-  int n;
-};
-
-std::string describe(const Fmt& t) {
-  static const char* const qn[] = {"RND", "RND_ZERO", "RND_MIN_INF", "RND_INF",
-                                   "RND_CONV", "TRN", "TRN_ZERO"};
-  static const char* const on[] = {"SAT", "SAT_ZERO", "SAT_SYM", "WRAP", "WRAP_SM"};
-  std::ostringstream os;
-  os << (t.s ? "fixed<" : "ufixed<") << t.w << "," << t.i << "," << qn[t.q] << "," << on[t.o]
-     << "," << t.n << ">";
-  return os.str();
-}
-
-using ld = long double;
-
-std::uint64_t low_mask(int w) { return w >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << w) - 1; }
-bool bit(std::uint64_t v, int k) { return ((v >> k) & 1u) != 0; }
-std::uint64_t set_bit(std::uint64_t v, int k, bool b) {
-  return b ? v | (std::uint64_t{1} << k) : v & ~(std::uint64_t{1} << k);
-}
-
-// floor(y) mod 2^w as a W-bit pattern, by value (fmodl is exact).
-std::uint64_t pattern_of(ld y, int w) {
-  const ld m = std::ldexp(1.0L, w);
-  ld r = std::fmod(y, m);
-  if (r < 0) r += m;
-  // r < 2^w <= 2^64; for w == 64 split to stay inside uint64's conversion range.
-  if (w == 64) {
-    const ld hi = std::floor(r / 4294967296.0L);
-    return (static_cast<std::uint64_t>(hi) << 32) |
-           static_cast<std::uint64_t>(r - hi * 4294967296.0L);
-  }
-  return static_cast<std::uint64_t>(r);
-}
-
-// The W-bit pattern that converting the exact value x (from a source of
-// signedness src_signed) into t gives. Sections 2 and 3.
-std::uint64_t model_bits(ld x, bool src_signed, const Fmt& t) {
-  const ld y = std::ldexp(x, t.w - t.i);  // exact
-  const ld fl = std::floor(y);
-  const ld frac = y - fl;  // exact
-  const bool qb = frac >= 0.5L;
-  const bool r = qb ? frac > 0.5L : frac > 0.0L;
-  const bool s = x < 0;
-  const bool lsb = std::fmod(fl, 2.0L) != 0;
-  bool inc = false;
-  switch (t.q) {
-    case TRN: inc = false; break;
-    case TRN_ZERO: inc = s && (qb || r); break;
-    case RND: inc = qb; break;
-    case RND_ZERO: inc = qb && (s || r); break;
-    case RND_MIN_INF: inc = qb && r; break;
-    case RND_INF: inc = qb && (!s || r); break;
-    case RND_CONV: inc = qb && (lsb || r); break;
-  }
-  const ld rounded = fl + (inc ? 1.0L : 0.0L);
-  std::uint64_t v = pattern_of(rounded, t.w);
-  if (t.o == WRAP && t.n == 0) return v;
-
-  const ld max_v = t.s ? std::ldexp(1.0L, t.w - 1) - 1 : std::ldexp(1.0L, t.w) - 1;
-  const ld min_v = t.s ? -std::ldexp(1.0L, t.w - 1) : 0.0L;
-  const bool ovf = rounded > max_v, unf = rounded < min_v;
-  const std::uint64_t mask = low_mask(t.w);
-  const std::uint64_t max_bits = pattern_of(max_v, t.w), min_bits = pattern_of(min_v, t.w);
-  // -MAX is MIN with the LSB set (the headers set bit W-1 and bit 0): for W = 1
-  // both are bit 0, so -MAX is -1 there, the spec's "W = 1: -1 stays -1".
-  const std::uint64_t neg_max_bits = min_bits | 1u;
-  if (!ovf && !unf) {
-    // SAT_SYM maps an exact MIN from a signed source to -MAX.
-    if (t.o == SAT_SYM && t.s && src_signed && rounded == min_v) return neg_max_bits;
-    return v;
-  }
-  const bool neg = rounded < 0;
-  switch (t.o) {
-    case SAT: return ovf ? max_bits : min_bits;
-    case SAT_ZERO: return 0;
-    case SAT_SYM: return ovf ? max_bits : (t.s ? neg_max_bits : 0);
-    case WRAP:  // N > 0: saturate the top N bits
-      if (t.s) {
-        v = set_bit(v, t.w - 1, neg);
-        for (int k = t.w - t.n; k <= t.w - 2; ++k) v = set_bit(v, k, !neg);
-      } else {
-        for (int k = t.w - t.n; k <= t.w - 1; ++k) v = set_bit(v, k, true);
-      }
-      return v;
-    case WRAP_SM: {
-      const bool ro = bit(v, t.w - 1);
-      if (t.n == 0) {
-        const bool ld_bit = std::fmod(std::floor(std::ldexp(fl, -t.w)), 2.0L) != 0;
-        if (ld_bit != ro) v = ~v & mask;
-        return set_bit(v, t.w - 1, ld_bit);
-      }
-      if (t.n == 1) {
-        if (neg != ro) v = ~v & mask;
-        return set_bit(v, t.w - 1, neg);
-      }
-      if (bit(v, t.w - t.n) == neg) v = ~v & mask;
-      for (int k = t.w - t.n; k <= t.w - 2; ++k) v = set_bit(v, k, !neg);
-      return set_bit(v, t.w - 1, neg);
-    }
-  }
-  return v;
-}
-
-// The exact value of a double for the model: section 9 decodes NaN as
-// +-1.mant * 2^1024 and inf as +-2^1024.
-ld model_value(double d) {
-  if (std::isfinite(d)) return static_cast<ld>(d);
-  std::uint64_t bits;
-  std::memcpy(&bits, &d, sizeof bits);
-  const ld mant = 1.0L + std::ldexp(static_cast<ld>(bits & low_mask(52)), -52);
-  const ld mag = std::ldexp(std::isnan(d) ? mant : 1.0L, 1024);
-  return std::signbit(d) ? -mag : mag;
-}
+// ---- The model (tests/common/fixed_point_model.hpp, shared with the exhaustive sweep) ------
+using Fmt = fixed_model::Format;
+using fixed_model::describe;
+using fixed_model::ld;
+using fixed_model::low_mask;
+using fixed_model::model_bits;
+using fixed_model::model_value;
 
 template <class T>
 std::uint64_t bits_of(const T& x) {

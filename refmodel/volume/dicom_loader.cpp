@@ -8,7 +8,9 @@
 //
 // Before GDCM parses a file, its data element structure is walked here: Debian's
 // GDCM 3.0 aborts the process on an assertion for many truncated files, and
-// reads a file cut inside its pixel data without complaint.
+// reads a file cut inside its pixel data without complaint. GDCM itself runs in
+// a child process per file (child_process.hpp), because the walk cannot foresee
+// every assertion: an abort, crash or hang there is an Error naming the file.
 
 // GDCM 3.0's headers use C casts (and are not on a SYSTEM include path).
 #pragma GCC diagnostic push
@@ -25,6 +27,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -37,9 +40,11 @@
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <type_traits>
 #include <vector>
 
 #include "refmodel/error.hpp"
+#include "refmodel/volume/child_process.hpp"
 #include "refmodel/volume/loaders.hpp"
 
 namespace voxcast::ref {
@@ -273,6 +278,16 @@ class StructureWalk {
   bool big_endian_ = false;
 };
 
+// The whole file; empty if it cannot be read (an empty file is not DICOM either).
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) return {};
+  std::string content(static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)), '\0');
+  in.seekg(0);
+  if (!in.read(content.data(), static_cast<std::streamsize>(content.size()))) return {};
+  return content;
+}
+
 void quiet_gdcm() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -282,136 +297,330 @@ void quiet_gdcm() {
   });
 }
 
-// Reads one file. Returns false for files to skip (not DICOM, or DICOM without
-// pixel data); throws for DICOM images that cannot be used.
-bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
-  const std::string where = folder + "/" + file.filename().string();
-  std::string content;
-  {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(where + ": cannot open for reading");
-    content.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  // DICOM Part 10 files carry "DICM" after a 128-byte preamble. A file without
-  // it is taken as a bare DICOM data set only if it starts with an element of
-  // group 0002 or 0008 and its whole element structure parses.
-  const bool part10 = content.size() >= 132 && content.compare(128, 4, "DICM") == 0;
-  if (!part10) {
-    const bool plausible =
-        content.size() >= 8 && (content.compare(0, 2, std::string("\x02\x00", 2)) == 0 ||
-                                content.compare(0, 2, std::string("\x08\x00", 2)) == 0);
-    if (!plausible) return false;  // not DICOM
-  }
-  const std::string broken = StructureWalk(content).check(part10);
-  if (!broken.empty()) {
-    if (!part10) return false;  // not DICOM
-    throw Error(where + ": truncated or corrupt DICOM file (" + broken + ")");
-  }
-  // GDCM's image reader aborts (an assert) on SamplesPerPixel > 4: the element
-  // is checked on a plain parse first (fuzz finding
-  // tests/fuzz_regress/data/dicom/samples_per_pixel_huge.dcm).
-  {
-    std::istringstream pre(content);
-    gdcm::Reader plain;
-    plain.SetStream(pre);
-    if (plain.Read()) {
-      const gdcm::DataSet& pds = plain.GetFile().GetDataSet();
-      const gdcm::ByteValue* spp = pds.FindDataElement(gdcm::Tag(0x0028, 0x0002))
-                                       ? pds.GetDataElement(gdcm::Tag(0x0028, 0x0002)).GetByteValue()
-                                       : nullptr;
-      if (spp) {
-        std::uint16_t value = 0;
-        if (spp->GetLength() == 2) std::memcpy(&value, spp->GetPointer(), 2);
-        if (value != 1)
-          throw Error(where + ": SamplesPerPixel = " + std::to_string(value) +
-                      "; only greyscale slices are supported");
-      }
-    }
-  }
-  std::istringstream stream(std::move(content));
-  gdcm::ImageReader reader;
-  reader.SetStream(stream);
-  if (!reader.Read()) {
-    std::istringstream again(stream.str());
-    gdcm::Reader plain;
-    plain.SetStream(again);
-    if (plain.Read()) {
-      if (!plain.GetFile().GetDataSet().FindDataElement(gdcm::Tag(0x7fe0, 0x0010)))
-        return false;  // DICOM without an image (DICOMDIR, report, ...)
-      throw Error(where + ": GDCM cannot decode its pixel data");
-    }
-    if (part10) throw Error(where + ": corrupt DICOM file (GDCM cannot parse it)");
-    return false;  // not DICOM
-  }
-  const gdcm::Image& image = reader.GetImage();
-  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
-  s.name = file.filename().string();
+// --- What GDCM makes of one file (decoded in a child process) -----------------------
+// GDCM runs only in a child (child_process.hpp): Debian's GDCM 3.0 aborts on
+// assertions for some malformed files (fuzz finding
+// tests/fuzz_regress/data/dicom/vr16_read_pre_value_assert.dcm). The child sends
+// back the header fields and the decoded pixels; every check on them is made here
+// in the parent.
+struct Decoded {
+  enum Kind : std::uint8_t { kSkip, kRefused, kImage };
+  Kind kind = kSkip;
+  std::string refusal;  // kRefused: why, without the file name
+  std::string series_uid;
+  std::uint32_t frames = 1, columns = 0, rows = 0;
+  std::uint16_t samples_per_pixel = 1;
+  std::uint8_t scalar = 0;  // 1 UINT8, 2 INT8, 3 UINT16, 4 INT16, 0 anything else
+  std::string scalar_name;
+  std::uint16_t pixel_representation = 0, bits_allocated = 0, bits_stored = 0, high_bit = 0;
+  std::uint8_t has_position = 0, has_orientation = 0, has_spacing = 0, has_thickness = 0;
+  std::array<double, 3> position{};
+  std::array<double, 6> orientation{};
+  std::array<double, 2> spacing{};  // PixelSpacing: row spacing (y), column spacing (x)
+  double thickness = 0.0, slope = 1.0, intercept = 0.0;
+  std::uint8_t slope_element_zero = 0;  // RescaleSlope (0028,1053) is present and 0
+  std::int64_t native_length = -1;      // bytes of unencapsulated pixel data; -1 encapsulated
+  std::uint8_t pixels_decoded = 0;      // GetBuffer ran and succeeded
+  std::string pixels;                   // GDCM's buffer, native byte order
+};
 
-  gdcm::Attribute<0x0020, 0x000e> series;
-  series.SetFromDataSet(ds);
-  s.series_uid = trim(std::string(series.GetValue()));
+// The child's result through the pipe: the fields in order, memcpy'd (the
+// parent is the same program), strings with their length first.
+class Packer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void put(const std::string& s) {
+    put(static_cast<std::uint64_t>(s.size()));
+    out_ += s;
+  }
+  std::string take() { return std::move(out_); }
 
-  if (image.GetNumberOfDimensions() > 2 && image.GetDimension(2) > 1)
-    throw Error(where + ": a multi-frame image (" + std::to_string(image.GetDimension(2)) +
-                " frames); only series of single-frame slices are supported");
-  const gdcm::PixelFormat& pf = image.GetPixelFormat();
-  if (pf.GetSamplesPerPixel() != 1)
-    throw Error(where + ": SamplesPerPixel = " + std::to_string(pf.GetSamplesPerPixel()) +
-                "; only greyscale slices are supported");
-  const gdcm::PixelFormat::ScalarType st = pf.GetScalarType();
-  if (st != gdcm::PixelFormat::UINT8 && st != gdcm::PixelFormat::INT8 &&
-      st != gdcm::PixelFormat::UINT16 && st != gdcm::PixelFormat::INT16)
-    throw Error(where + ": pixel type " + pf.GetScalarTypeAsString() +
-                " is not supported (8 or 16 bits allocated)");
-  s.is_signed = pf.GetPixelRepresentation() != 0;
-  s.bits_allocated = pf.GetBitsAllocated();
-  s.columns = static_cast<int>(image.GetDimension(0));
-  s.rows = static_cast<int>(image.GetDimension(1));
-  if (s.columns < 1 || s.rows < 1) throw Error(where + ": empty image");
+ private:
+  std::string out_;
+};
 
-  if (!ds.FindDataElement(gdcm::Tag(0x0020, 0x0032)))
-    throw Error(where + ": no ImagePositionPatient (0020,0032); cannot order the slices");
-  if (!ds.FindDataElement(gdcm::Tag(0x0020, 0x0037)))
-    throw Error(where + ": no ImageOrientationPatient (0020,0037); cannot order the slices");
-  if (!ds.FindDataElement(gdcm::Tag(0x0028, 0x0030)))
-    throw Error(where + ": no PixelSpacing (0028,0030)");
-  gdcm::Attribute<0x0020, 0x0032> ipp;
-  ipp.SetFromDataSet(ds);
-  gdcm::Attribute<0x0020, 0x0037> iop;
-  iop.SetFromDataSet(ds);
-  gdcm::Attribute<0x0028, 0x0030> pixel_spacing;  // row spacing (y), column spacing (x)
-  pixel_spacing.SetFromDataSet(ds);
-  for (unsigned k = 0; k < 3; ++k) s.position[k] = ipp.GetValue(k);
-  for (unsigned k = 0; k < 6; ++k) s.orientation[k] = iop.GetValue(k);
-  s.spacing_y = pixel_spacing.GetValue(0);
-  s.spacing_x = pixel_spacing.GetValue(1);
-  if (ds.FindDataElement(gdcm::Tag(0x0018, 0x0050))) {
+class Unpacker {
+ public:
+  explicit Unpacker(const std::string& in) : in_(in) {}
+  template <class T>
+  void get(T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::memcpy(&v, take(sizeof v), sizeof v);
+  }
+  void get(std::string& s) {
+    std::uint64_t n = 0;
+    get(n);
+    s.assign(take(n), n);
+  }
+  bool at_end() const { return pos_ == in_.size(); }
+
+ private:
+  const char* take(std::uint64_t n) {
+    if (n > in_.size() - pos_) throw Error("the DICOM parser's child process sent a short result");
+    const char* p = in_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  const std::string& in_;
+  std::size_t pos_ = 0;
+};
+
+// Packing and unpacking list the fields once, here.
+template <class F>
+void for_each_field(Decoded& d, F&& f) {
+  f(d.kind), f(d.refusal), f(d.series_uid), f(d.frames), f(d.columns), f(d.rows);
+  f(d.samples_per_pixel), f(d.scalar), f(d.scalar_name), f(d.pixel_representation);
+  f(d.bits_allocated), f(d.bits_stored), f(d.high_bit);
+  f(d.has_position), f(d.has_orientation), f(d.has_spacing), f(d.has_thickness);
+  f(d.position), f(d.orientation), f(d.spacing), f(d.thickness);
+  f(d.slope), f(d.intercept), f(d.slope_element_zero);
+  f(d.native_length), f(d.pixels_decoded), f(d.pixels);
+}
+
+std::string pack(Decoded& d) {
+  Packer p;
+  for_each_field(d, [&](auto& v) { p.put(v); });
+  return p.take();
+}
+
+Decoded unpack(const std::string& bytes) {
+  Decoded d;
+  Unpacker u(bytes);
+  for_each_field(d, [&](auto& v) { u.get(v); });
+  if (!u.at_end() || d.kind > Decoded::kImage)
+    throw Error("the DICOM parser's child process sent a malformed result");
+  return d;
+}
+
+Decoded refused(std::string why) {
+  Decoded d;
+  d.kind = Decoded::kRefused;
+  d.refusal = std::move(why);
+  return d;
+}
+
+// GDCM's image reader aborts (an assert) on SamplesPerPixel > 4: the element
+// is checked on a plain parse first, for a clear message (fuzz finding
+// tests/fuzz_regress/data/dicom/samples_per_pixel_huge.dcm).
+std::string samples_per_pixel_refusal(const std::string& content) {
+  std::istringstream pre(content);
+  gdcm::Reader plain;
+  plain.SetStream(pre);
+  // Up to the pixel data: the header is all this needs.
+  if (!plain.ReadUpToTag(gdcm::Tag(0x7fe0, 0x0010))) return "";
+  const gdcm::DataSet& pds = plain.GetFile().GetDataSet();
+  if (!pds.FindDataElement(gdcm::Tag(0x0028, 0x0002))) return "";
+  const gdcm::ByteValue* spp = pds.GetDataElement(gdcm::Tag(0x0028, 0x0002)).GetByteValue();
+  if (!spp) return "";
+  std::uint16_t value = 0;
+  if (spp->GetLength() == 2) std::memcpy(&value, spp->GetPointer(), 2);
+  if (value == 1) return "";
+  return "SamplesPerPixel = " + std::to_string(value) + "; only greyscale slices are supported";
+}
+
+// The image reader failed: a DICOM file without an image is skipped.
+Decoded unreadable_image(const std::string& content, bool part10) {
+  std::istringstream again(content);
+  gdcm::Reader plain;
+  plain.SetStream(again);
+  if (plain.Read()) {
+    if (!plain.GetFile().GetDataSet().FindDataElement(gdcm::Tag(0x7fe0, 0x0010)))
+      return Decoded{};  // DICOM without an image (DICOMDIR, report, ...)
+    return refused("GDCM cannot decode its pixel data");
+  }
+  if (part10) return refused("corrupt DICOM file (GDCM cannot parse it)");
+  return Decoded{};  // not DICOM
+}
+
+std::uint8_t scalar_code(gdcm::PixelFormat::ScalarType st) {
+  switch (st) {
+    case gdcm::PixelFormat::UINT8: return 1;
+    case gdcm::PixelFormat::INT8: return 2;
+    case gdcm::PixelFormat::UINT16: return 3;
+    case gdcm::PixelFormat::INT16: return 4;
+    default: return 0;
+  }
+}
+
+void read_geometry(const gdcm::DataSet& ds, Decoded& d) {
+  d.has_position = ds.FindDataElement(gdcm::Tag(0x0020, 0x0032));
+  d.has_orientation = ds.FindDataElement(gdcm::Tag(0x0020, 0x0037));
+  d.has_spacing = ds.FindDataElement(gdcm::Tag(0x0028, 0x0030));
+  d.has_thickness = ds.FindDataElement(gdcm::Tag(0x0018, 0x0050));
+  if (d.has_position) {
+    gdcm::Attribute<0x0020, 0x0032> ipp;
+    ipp.SetFromDataSet(ds);
+    for (unsigned k = 0; k < 3; ++k) d.position[k] = ipp.GetValue(k);
+  }
+  if (d.has_orientation) {
+    gdcm::Attribute<0x0020, 0x0037> iop;
+    iop.SetFromDataSet(ds);
+    for (unsigned k = 0; k < 6; ++k) d.orientation[k] = iop.GetValue(k);
+  }
+  if (d.has_spacing) {
+    gdcm::Attribute<0x0028, 0x0030> pixel_spacing;
+    pixel_spacing.SetFromDataSet(ds);
+    d.spacing = {pixel_spacing.GetValue(0), pixel_spacing.GetValue(1)};
+  }
+  if (d.has_thickness) {
     gdcm::Attribute<0x0018, 0x0050> thickness;
     thickness.SetFromDataSet(ds);
-    s.thickness = thickness.GetValue();
+    d.thickness = thickness.GetValue();
   }
-  s.slope = image.GetSlope();
-  // GDCM reports a RescaleSlope of 0 as 1 (a silent reinterpretation: every
-  // voxel would be the intercept); the element itself decides (fuzz seed
-  // fuzz/corpus/dicom/broken_zero_slope.dcm).
+}
+
+// Decodes the pixels only when the header makes that safe and useful: one
+// frame of at most kMaxVoxels pixels, and native pixel data that hold them
+// (GDCM's buffer has the size the header promises; a huge Rows x Columns
+// would be allocated whole). The parent rejects the other cases by name.
+void read_pixels(const gdcm::Image& image, const gdcm::DataSet& ds, Decoded& d) {
+  if (const gdcm::ByteValue* native = ds.GetDataElement(gdcm::Tag(0x7fe0, 0x0010)).GetByteValue())
+    d.native_length = native->GetLength();
+  const std::uint64_t count = std::uint64_t{d.columns} * d.rows;
+  const std::uint64_t bytes = d.bits_allocated == 8 ? 1 : 2;
+  if (d.frames != 1 || d.samples_per_pixel != 1 || d.scalar == 0 || count == 0 ||
+      count > kMaxVoxels)
+    return;
+  if (d.native_length >= 0 && static_cast<std::uint64_t>(d.native_length) < count * bytes) return;
+  d.pixels.resize(image.GetBufferLength());
+  d.pixels_decoded = image.GetBuffer(d.pixels.data());
+  if (!d.pixels_decoded) d.pixels.clear();
+}
+
+// The child's work: everything GDCM does with one file.
+Decoded decode_with_gdcm(const std::string& content, bool part10) {
+  if (std::string why = samples_per_pixel_refusal(content); !why.empty())
+    return refused(std::move(why));
+  std::istringstream stream(content);
+  gdcm::ImageReader reader;
+  reader.SetStream(stream);
+  if (!reader.Read()) return unreadable_image(content, part10);
+  const gdcm::Image& image = reader.GetImage();
+  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+  Decoded d;
+  d.kind = Decoded::kImage;
+  gdcm::Attribute<0x0020, 0x000e> series;
+  series.SetFromDataSet(ds);
+  d.series_uid = std::string(series.GetValue());
+  d.frames = image.GetNumberOfDimensions() > 2 ? image.GetDimension(2) : 1;
+  d.columns = image.GetDimension(0);
+  d.rows = image.GetDimension(1);
+  const gdcm::PixelFormat& pf = image.GetPixelFormat();
+  d.samples_per_pixel = pf.GetSamplesPerPixel();
+  d.scalar = scalar_code(pf.GetScalarType());
+  d.scalar_name = pf.GetScalarTypeAsString();
+  d.pixel_representation = pf.GetPixelRepresentation();
+  d.bits_allocated = pf.GetBitsAllocated();
+  d.bits_stored = pf.GetBitsStored();
+  d.high_bit = pf.GetHighBit();
+  read_geometry(ds, d);
+  d.slope = image.GetSlope();
   if (ds.FindDataElement(gdcm::Tag(0x0028, 0x1053))) {
     gdcm::Attribute<0x0028, 0x1053> slope;
     slope.SetFromDataSet(ds);
-    if (slope.GetValue() == 0.0) s.slope = 0.0;
+    d.slope_element_zero = slope.GetValue() == 0.0;
   }
-  s.intercept = image.GetIntercept();
+  d.intercept = image.GetIntercept();
+  read_pixels(image, ds, d);
+  return d;
+}
+
+// A file GDCM is to parse.
+struct Candidate {
+  fs::path file;
+  std::string where;  // folder/name, for messages
+  bool part10 = false;
+};
+
+// The Error for the file the child was parsing when it aborted, crashed, hung
+// or threw.
+Error child_failure(const ChildResult& r, const std::string& where) {
+  using O = ChildResult::Outcome;
+  switch (r.outcome) {
+    case O::Threw: return Error(where + ": GDCM failed while parsing (" + r.detail + ")");
+    case O::Signalled:
+      return Error(where + ": GDCM " + (r.detail == "SIGABRT" ? "aborted" : "crashed") +
+                   " while parsing (" + r.detail + ")");
+    case O::TimedOut: return Error(where + ": GDCM did not finish parsing (" + r.detail + ")");
+    case O::Exited:
+    case O::Done: break;
+  }
+  return Error(where + ": the DICOM parser's child process ended with " + r.detail +
+               " while parsing");
+}
+
+// GDCM's view of every candidate, in order, from one child process (the child
+// reads each file again: the parent keeps no file contents). If the child
+// fails, the result is shorter than `candidates` and `failure` holds its
+// outcome: the next candidate is the file at fault.
+std::vector<Decoded> decode_isolated(const std::vector<Candidate>& candidates,
+                                     std::chrono::milliseconds timeout, ChildResult& failure) {
+  std::vector<Decoded> decoded;
+  decoded.reserve(candidates.size());
+  failure = run_in_child(
+      [&](const ChildSend& send) {
+        for (const Candidate& c : candidates) {
+          const std::string content = read_file(c.file);
+          Decoded d = content.empty() ? refused("cannot open for reading")
+                                      : decode_with_gdcm(content, c.part10);
+          send(pack(d));
+        }
+      },
+      [&](std::string&& bytes) { decoded.push_back(unpack(bytes)); }, timeout);
+  if (failure.outcome == ChildResult::Outcome::Done && decoded.size() != candidates.size()) {
+    failure.outcome = ChildResult::Outcome::Exited;
+    failure.detail = "status 0 after " + std::to_string(decoded.size()) + " of " +
+                     std::to_string(candidates.size()) + " files";
+  }
+  return decoded;
+}
+
+// The checks on GDCM's fields, in the order a reader would meet the problems.
+void check_format(const Decoded& d, const std::string& where) {
+  if (d.frames > 1)
+    throw Error(where + ": a multi-frame image (" + std::to_string(d.frames) +
+                " frames); only series of single-frame slices are supported");
+  if (d.samples_per_pixel != 1)
+    throw Error(where + ": SamplesPerPixel = " + std::to_string(d.samples_per_pixel) +
+                "; only greyscale slices are supported");
+  if (d.scalar == 0)
+    throw Error(where + ": pixel type " + d.scalar_name +
+                " is not supported (8 or 16 bits allocated)");
+  if (d.columns < 1 || d.rows < 1) throw Error(where + ": empty image");
+  if (std::uint64_t{d.columns} * d.rows > kMaxVoxels)
+    throw Error(where + ": " + std::to_string(d.columns) + "x" + std::to_string(d.rows) +
+                " pixels, more than the limit of 2^31 voxels");
+  if (!d.has_position)
+    throw Error(where + ": no ImagePositionPatient (0020,0032); cannot order the slices");
+  if (!d.has_orientation)
+    throw Error(where + ": no ImageOrientationPatient (0020,0037); cannot order the slices");
+  if (!d.has_spacing) throw Error(where + ": no PixelSpacing (0028,0030)");
+}
+
+void check_rescale(Slice& s, const Decoded& d, const std::string& where) {
+  s.slope = d.slope;
+  // GDCM reports a RescaleSlope of 0 as 1 (a silent reinterpretation: every
+  // voxel would be the intercept); the element itself decides (fuzz seed
+  // fuzz/corpus/dicom/broken_zero_slope.dcm).
+  if (d.slope_element_zero) s.slope = 0.0;
+  s.intercept = d.intercept;
   if (!std::isfinite(s.slope) || s.slope == 0.0 || !std::isfinite(s.intercept))
     throw Error(where + ": RescaleSlope " + num(s.slope) + " / RescaleIntercept " +
                 num(s.intercept) + " are not usable");
+}
 
-  // Pixel values: GDCM decodes the transfer syntax; the value is the low
-  // BitsStored bits of each allocated word (signed: two's complement of that
-  // width), so any bits above HighBit (old overlay planes) are dropped here.
-  const int bits_stored = pf.GetBitsStored();
-  if (pf.GetHighBit() != bits_stored - 1 || bits_stored < 1 || bits_stored > s.bits_allocated)
+// Pixel values: GDCM decodes the transfer syntax; the value is the low
+// BitsStored bits of each allocated word (signed: two's complement of that
+// width), so any bits above HighBit (old overlay planes) are dropped here.
+void convert_pixels(Slice& s, const Decoded& d, const std::string& where) {
+  const int bits_stored = d.bits_stored;
+  if (d.high_bit != bits_stored - 1 || bits_stored < 1 || bits_stored > s.bits_allocated)
     throw Error(where + ": BitsStored " + std::to_string(bits_stored) + " / HighBit " +
-                std::to_string(pf.GetHighBit()) +
-                " is not supported (need HighBit = BitsStored - 1)");
+                std::to_string(d.high_bit) + " is not supported (need HighBit = BitsStored - 1)");
   const std::uint32_t value_mask = (std::uint32_t{1} << bits_stored) - 1;
   const std::uint32_t sign_bit = std::uint32_t{1} << (bits_stored - 1);
   const std::size_t count = static_cast<std::size_t>(s.columns) * static_cast<std::size_t>(s.rows);
@@ -420,25 +629,23 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
   // buffer has the size the header promises and GetBuffer still succeeds, so
   // the missing pixels would be silently made up (fuzz finding
   // tests/fuzz_regress/data/dicom/short_pixel_data.dcm).
-  if (const gdcm::ByteValue* native = ds.GetDataElement(gdcm::Tag(0x7fe0, 0x0010)).GetByteValue();
-      native && native->GetLength() < count * bytes)
-    throw Error(where + ": pixel data hold " + std::to_string(native->GetLength()) + " bytes, " +
+  if (d.native_length >= 0 && static_cast<std::size_t>(d.native_length) < count * bytes)
+    throw Error(where + ": pixel data hold " + std::to_string(d.native_length) + " bytes, " +
                 std::to_string(s.columns) + "x" + std::to_string(s.rows) + " pixels need " +
                 std::to_string(count * bytes));
-  std::vector<char> buffer(image.GetBufferLength());
-  if (!image.GetBuffer(buffer.data())) throw Error(where + ": GDCM cannot decode its pixel data");
-  if (buffer.size() < count * bytes)
-    throw Error(where + ": pixel data hold " + std::to_string(buffer.size()) + " bytes, " +
+  if (!d.pixels_decoded) throw Error(where + ": GDCM cannot decode its pixel data");
+  if (d.pixels.size() < count * bytes)
+    throw Error(where + ": pixel data hold " + std::to_string(d.pixels.size()) + " bytes, " +
                 std::to_string(s.columns) + "x" + std::to_string(s.rows) + " pixels need " +
                 std::to_string(count * bytes));
   s.words.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
     std::uint32_t word;
     if (bytes == 1) {
-      word = static_cast<unsigned char>(buffer[k]);
+      word = static_cast<unsigned char>(d.pixels[k]);
     } else {
       std::uint16_t w;
-      std::memcpy(&w, &buffer[2 * k], 2);  // GDCM returns native byte order
+      std::memcpy(&w, &d.pixels[2 * k], 2);  // GDCM returns native byte order
       word = w;
     }
     word &= value_mask;
@@ -446,7 +653,105 @@ bool read_slice(const fs::path& file, const std::string& folder, Slice& s) {
     if (s.is_signed && (word & sign_bit) != 0) word |= ~value_mask;
     s.words[k] = static_cast<std::uint16_t>(word);
   }
-  return true;
+}
+
+// A Slice from GDCM's fields, or an Error naming the field at fault.
+void slice_from(const Decoded& d, const std::string& where, Slice& s) {
+  s.series_uid = trim(d.series_uid);
+  check_format(d, where);
+  s.is_signed = d.pixel_representation != 0;
+  s.bits_allocated = d.bits_allocated;
+  s.columns = static_cast<int>(d.columns);
+  s.rows = static_cast<int>(d.rows);
+  s.position = d.position;
+  s.orientation = d.orientation;
+  s.spacing_y = d.spacing[0];
+  s.spacing_x = d.spacing[1];
+  s.thickness = d.has_thickness ? d.thickness : 0.0;
+  check_rescale(s, d, where);
+  convert_pixels(s, d, where);
+}
+
+// What the parent decides about a file before GDCM sees it.
+struct Screened {
+  enum Kind { kSkip, kBroken, kParse } kind = kSkip;
+  std::string broken;  // kBroken: the message
+  bool part10 = false;
+};
+
+// Reads one file and walks its element structure (our code, in the parent, so
+// the fuzzer sees its coverage). Files that are not DICOM are skipped.
+Screened screen_file(const fs::path& file, const std::string& where) {
+  Screened r;
+  std::error_code ec;
+  const std::string content = read_file(file);
+  if (content.empty() && fs::file_size(file, ec) != 0) {
+    r.kind = Screened::kBroken;
+    r.broken = where + ": cannot open for reading";
+    return r;
+  }
+  // DICOM Part 10 files carry "DICM" after a 128-byte preamble. A file without
+  // it is taken as a bare DICOM data set only if it starts with an element of
+  // group 0002 or 0008 and its whole element structure parses.
+  r.part10 = content.size() >= 132 && content.compare(128, 4, "DICM") == 0;
+  if (!r.part10) {
+    const bool plausible =
+        content.size() >= 8 && (content.compare(0, 2, std::string("\x02\x00", 2)) == 0 ||
+                                content.compare(0, 2, std::string("\x08\x00", 2)) == 0);
+    if (!plausible) return r;  // not DICOM
+  }
+  const std::string broken = StructureWalk(content).check(r.part10);
+  if (!broken.empty()) {
+    if (!r.part10) return r;  // not DICOM
+    r.kind = Screened::kBroken;
+    r.broken = where + ": truncated or corrupt DICOM file (" + broken + ")";
+    return r;
+  }
+  r.kind = Screened::kParse;
+  return r;
+}
+
+// Every file of the folder, in name order: the slices, and the names of the
+// files skipped (not DICOM, or DICOM without pixel data). The first file in
+// name order that cannot be used throws.
+std::vector<Slice> read_slices(const std::vector<fs::path>& files, const std::string& folder,
+                               std::chrono::milliseconds timeout,
+                               std::vector<std::string>& skipped) {
+  std::vector<Screened> screened;
+  std::vector<Candidate> candidates;
+  for (const fs::path& f : files) {
+    const std::string where = folder + "/" + f.filename().string();
+    screened.push_back(screen_file(f, where));
+    if (screened.back().kind == Screened::kBroken) break;  // nothing after it is reached
+    if (screened.back().kind == Screened::kParse)
+      candidates.push_back({f, where, screened.back().part10});
+  }
+  ChildResult failure;
+  const std::vector<Decoded> decoded =
+      candidates.empty() ? std::vector<Decoded>{} : decode_isolated(candidates, timeout, failure);
+  std::vector<Slice> slices;
+  std::size_t next = 0;  // the next candidate
+  for (std::size_t k = 0; k < screened.size(); ++k) {
+    const Screened& sc = screened[k];
+    if (sc.kind == Screened::kBroken) throw Error(sc.broken);
+    if (sc.kind == Screened::kSkip) {
+      skipped.push_back(files[k].filename().string());
+      continue;
+    }
+    const Candidate& c = candidates[next];
+    if (next >= decoded.size()) throw child_failure(failure, c.where);
+    const Decoded& d = decoded[next++];
+    if (d.kind == Decoded::kSkip) {
+      skipped.push_back(files[k].filename().string());
+      continue;
+    }
+    if (d.kind == Decoded::kRefused) throw Error(c.where + ": " + d.refusal);
+    Slice s;
+    s.name = files[k].filename().string();
+    slice_from(d, c.where, s);
+    slices.push_back(std::move(s));
+  }
+  return slices;
 }
 
 std::int32_t raw_value(const Slice& s, std::size_t k) {
@@ -458,7 +763,7 @@ bool near(double a, double b, double tolerance) { return std::abs(a - b) <= tole
 
 }  // namespace
 
-Volume load_dicom_series(const std::string& folder) {
+Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds parse_timeout) {
   quiet_gdcm();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw Error(folder + ": no such folder");
@@ -469,15 +774,8 @@ Volume load_dicom_series(const std::string& folder) {
     if (e.is_regular_file()) files.push_back(e.path());
   if (ec) throw Error(folder + ": cannot list the folder (" + ec.message() + ")");
   std::sort(files.begin(), files.end());
-  std::vector<Slice> slices;
   std::vector<std::string> skipped;
-  for (const fs::path& f : files) {
-    Slice s;
-    if (read_slice(f, folder, s))
-      slices.push_back(std::move(s));
-    else
-      skipped.push_back(f.filename().string());
-  }
+  std::vector<Slice> slices = read_slices(files, folder, parse_timeout, skipped);
   if (slices.empty()) {
     std::string list;
     for (const std::string& n : skipped) list += (list.empty() ? "" : ", ") + n;

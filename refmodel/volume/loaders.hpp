@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <string>
 
 #include "refmodel/volume/volume.hpp"
@@ -31,8 +32,13 @@ Volume load_nifti(const std::string& path);
 Volume load_raw(const std::string& path, const RawSpec& spec);
 
 // A folder holding the slices of one DICOM series (GDCM). CT slices are
-// converted to Hounsfield units through Rescale Slope/Intercept.
-Volume load_dicom_series(const std::string& folder);
+// converted to Hounsfield units through Rescale Slope/Intercept. GDCM parses
+// each file in a child process (refmodel/volume/child_process.hpp): if it
+// aborts, crashes or takes longer than `parse_timeout`, the Error names the
+// file and the cause.
+inline constexpr std::chrono::milliseconds kDicomParseTimeout{30000};
+Volume load_dicom_series(const std::string& folder,
+                         std::chrono::milliseconds parse_timeout = kDicomParseTimeout);
 
 // Built-in phantoms, generated in code: "shepp-logan", "shells", "tube", "box".
 // `size` is the edge length in voxels (cubic grid). `aa` > 1 gives partial

@@ -34,6 +34,7 @@
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/render/raycaster.hpp"
 #include "refmodel/scene/scene_toml.hpp"
+#include "tests/common/error_of.hpp"
 #include "tests/refmodel/render_fixtures.hpp"
 
 namespace voxcast::test {
@@ -60,18 +61,6 @@ inline ref::Scene material_scene(double alpha, ref::RenderMode mode = ref::Rende
   s.render.width = s.render.height = 16;
   s.lights = {ref::Light{}};
   return s;
-}
-
-// The message of the voxcast::Error that fn throws ("" and a failure if none).
-template <typename Fn>
-std::string error_of(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no voxcast::Error thrown";
-  return "";
 }
 
 // --- One scene through the three engines --------------------------------------------

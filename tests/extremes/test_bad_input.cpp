@@ -12,43 +12,19 @@
 #include <limits>
 
 #include "extremes.hpp"
+#include "tests/common/nifti_bytes.hpp"
 
 namespace voxcast::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-static_assert(sizeof(nifti_1_header) == 348, "the NIfTI-1 header is 348 bytes");
-
 // --- Writing broken files -------------------------------------------------------------
 
-struct Nifti {
-  std::array<short, 8> dim{3, 8, 8, 8, 1, 1, 1, 1};
-  short datatype = DT_UINT8;
-  short bitpix = 8;
-  std::array<float, 3> pixdim{1.0f, 1.0f, 1.0f};
-  float vox_offset = 352.0f;
-  float scl_slope = 0.0f;
+// An 8x8x8 uint8 NIfTI-1 (tests/common/nifti_bytes.hpp), to be broken field by field.
+struct Nifti : NiftiSpec {
+  Nifti() { dim = {3, 8, 8, 8, 1, 1, 1, 1}; }
 };
-
-// A single-file NIfTI-1: header, 4-byte extension flag, data at byte 352.
-std::vector<unsigned char> nifti_bytes(const Nifti& s, const std::vector<unsigned char>& data) {
-  nifti_1_header h{};
-  h.sizeof_hdr = 348;
-  std::copy(s.dim.begin(), s.dim.end(), h.dim);
-  h.datatype = s.datatype;
-  h.bitpix = s.bitpix;
-  h.pixdim[0] = 1.0f;
-  for (int a = 0; a < 3; ++a) h.pixdim[a + 1] = s.pixdim[static_cast<std::size_t>(a)];
-  h.vox_offset = s.vox_offset;
-  h.scl_slope = s.scl_slope;
-  h.xyzt_units = NIFTI_UNITS_MM;
-  std::memcpy(h.magic, "n+1", 4);
-  std::vector<unsigned char> out(352 + data.size(), 0);
-  std::memcpy(out.data(), &h, sizeof h);
-  if (!data.empty()) std::memcpy(out.data() + 352, data.data(), data.size());
-  return out;
-}
 
 // 512 voxels 0, 1, ..., 255, 0, 1, ...: a shifted read shows.
 std::vector<unsigned char> ramp_voxels() {

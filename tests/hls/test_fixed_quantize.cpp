@@ -19,133 +19,30 @@
 #include <vector>
 
 #include "hls/fixed_point.hpp"
+#include "tests/common/fixed_point_model.hpp"
 
 namespace {
 
 using namespace voxcast::hls;
 
-// ---- Independent reference ----------------------------------------------------------------
+// ---- Independent reference (tests/common/fixed_point_model.hpp) ---------------------------
 // Works on the exact value in long double (64-bit mantissa: every value below is exact) with
-// floorl / fmodl, not with the integer shifts and masks of the implementation.
+// floorl / fmodl, not with the integer shifts and masks of the implementation; shared with the
+// fixed-point fuzz target (fuzz/targets/fixed_point.cpp).
 
-struct target_format {
-  int w;
-  int i;
-  bool s;
-  q_mode q;
-  o_mode o;
-  int n;
-};
-
-std::string describe(const target_format& t) {
-  static const char* const qn[] = {"RND", "RND_ZERO", "RND_MIN_INF", "RND_INF",
-                                   "RND_CONV", "TRN", "TRN_ZERO"};
-  static const char* const on[] = {"SAT", "SAT_ZERO", "SAT_SYM", "WRAP", "WRAP_SM"};
-  std::ostringstream os;
-  os << (t.s ? "fixed<" : "ufixed<") << t.w << "," << t.i << "," << qn[t.q] << "," << on[t.o]
-     << "," << t.n << ">";
-  return os.str();
-}
+using target_format = voxcast::fixed_model::Format;
+using voxcast::fixed_model::describe;
 
 // The canonical raw integer (sign-extended for signed targets) that converting the exact value
-// x into format t must give.
+// x into format t must give. Signed source: of the section 3 rules only SAT_SYM's "exact MIN
+// becomes -MAX" asks, and only a signed source reaches a negative MIN.
 std::int64_t reference_raw(long double x, const target_format& t) {
-  const long double q = std::ldexp(1.0L, t.i - t.w);  // LSB weight
-  const long double y = x / q;                         // exact: q is a power of two
-  const long double floor_y = std::floor(y);
-  const long double frac = y - floor_y;
-  // Section 2: floor, first dropped bit qb, sticky r, sign s of the source.
-  const bool qb = frac >= 0.5L;
-  const bool r = qb ? frac > 0.5L : frac > 0.0L;
-  const bool s = x < 0;
-  const bool lsb = std::fmod(floor_y, 2.0L) != 0;
-  bool inc = false;
-  switch (t.q) {
-    case TRN: inc = false; break;
-    case TRN_ZERO: inc = s && (qb || r); break;
-    case RND: inc = qb; break;
-    case RND_ZERO: inc = qb && (s || r); break;
-    case RND_MIN_INF: inc = qb && r; break;
-    case RND_INF: inc = qb && (!s || r); break;
-    case RND_CONV: inc = qb && (lsb || r); break;
-  }
-  const long double rounded = floor_y + (inc ? 1.0L : 0.0L);
-
-  // Section 3: overflow on the rounded value.
-  const long double two_w = std::ldexp(1.0L, t.w);
-  const long double max_v = t.s ? std::ldexp(1.0L, t.w - 1) - 1 : two_w - 1;
-  const long double min_v = t.s ? -std::ldexp(1.0L, t.w - 1) : 0.0L;
-  long double low = std::fmod(rounded, two_w);  // the low W bits, V = t mod 2^W
-  if (low < 0) low += two_w;
-  std::uint64_t v = static_cast<std::uint64_t>(low);
-  const std::uint64_t mask = (std::uint64_t{1} << t.w) - 1;
-  const std::uint64_t max_p = static_cast<std::uint64_t>(max_v);
-  const std::uint64_t min_p = t.s ? (std::uint64_t{1} << (t.w - 1)) : 0;  // MIN pattern
-  const bool neg = rounded < 0;
-  const bool ovf = rounded > max_v;
-  const bool unf = rounded < min_v;
-  auto set_bit = [](std::uint64_t p, int k, bool b) {
-    return b ? (p | (std::uint64_t{1} << k)) : (p & ~(std::uint64_t{1} << k));
-  };
-  auto get_bit = [](std::uint64_t p, int k) { return ((p >> k) & 1U) != 0; };
-
-  if (t.o == WRAP && t.n == 0) {
-    // plain wrap: V
-  } else if (t.o == SAT) {
-    if (ovf) v = max_p;
-    if (unf) v = min_p;
-  } else if (t.o == SAT_ZERO) {
-    if (ovf || unf) v = 0;
-  } else if (t.o == SAT_SYM) {
-    // -MAX; ap builds it as MIN | 1, which for W = 1 is -1 (range {-1, 0}).
-    const std::uint64_t neg_max = t.s ? (min_p | 1U) : 0;
-    if (ovf) {
-      v = max_p;
-    } else if (unf) {
-      v = neg_max;
-    } else if (t.s && t.w > 1 && rounded == min_v) {
-      v = neg_max;  // an exact MIN from a signed source becomes -MAX
-    }
-  } else if (t.o == WRAP) {
-    if (ovf || unf) {
-      if (t.s) {
-        v = set_bit(v, t.w - 1, neg);
-        for (int k = t.w - t.n; k <= t.w - 2; ++k) v = set_bit(v, k, !neg);
-      } else {
-        for (int k = t.w - t.n; k <= t.w - 1; ++k) v = set_bit(v, k, true);
-      }
-    }
-  } else {  // WRAP_SM
-    if (ovf || unf) {
-      const bool ro = get_bit(v, t.w - 1);
-      if (t.n == 0) {
-        // lD: bit W of the aligned unrounded source.
-        const bool ld = std::fmod(std::floor(std::ldexp(floor_y, -t.w)), 2.0L) != 0;
-        if (ld != ro) v = set_bit(~v & mask, t.w - 1, ld);
-      } else if (t.n == 1) {
-        if (neg != ro) v = ~v & mask;
-        v = set_bit(v, t.w - 1, neg);
-      } else {
-        if (get_bit(v, t.w - t.n) == neg) v = ~v & mask;
-        for (int k = t.w - t.n; k <= t.w - 2; ++k) v = set_bit(v, k, !neg);
-        v = set_bit(v, t.w - 1, neg);
-      }
-    }
-  }
-  v &= mask;
-  if (t.s && get_bit(v, t.w - 1)) return static_cast<std::int64_t>(v) - static_cast<std::int64_t>(two_w);
-  return static_cast<std::int64_t>(v);
+  return voxcast::fixed_model::model_raw(x, true, t);
 }
 
 // Section 9: a double is decoded as sign, exponent and mantissa; NaN and inf decode as
 // +-1.mant * 2^1024.
-long double exact_value_of(double d) {
-  if (std::isfinite(d)) return static_cast<long double>(d);
-  const auto b = std::bit_cast<std::uint64_t>(d);
-  const long double mant = 1.0L + std::ldexp(static_cast<long double>(b & ((1ULL << 52) - 1)), -52);
-  const long double v = std::ldexp(mant, 1024);
-  return (b >> 63) != 0 ? -v : v;
-}
+long double exact_value_of(double d) { return voxcast::fixed_model::model_value(d); }
 
 // ---- Sweep machinery ------------------------------------------------------------------------
 // Compile time is the constraint (thousands of target types): each target instantiates only a

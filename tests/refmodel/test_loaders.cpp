@@ -31,13 +31,13 @@
 
 #include "refmodel/error.hpp"
 #include "refmodel/volume/loaders.hpp"
+#include "tests/common/error_of.hpp"
+#include "tests/common/nifti_bytes.hpp"
 
 namespace voxcast::ref {
 namespace {
 
 namespace fs = std::filesystem;
-
-static_assert(sizeof(nifti_1_header) == 348, "the NIfTI-1 header is 348 bytes");
 
 // A fresh folder under the test temp dir, removed with its contents.
 class ScratchDir {
@@ -64,17 +64,7 @@ class ScratchDir {
   fs::path path_;
 };
 
-// Runs fn, expects a voxcast::Error, returns its message.
-template <typename Fn>
-std::string error_of(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no voxcast::Error thrown";
-  return "";
-}
+using test::error_of;
 
 #define EXPECT_CONTAINS(haystack, needle)                          \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
@@ -94,58 +84,16 @@ std::vector<unsigned char> as_bytes(const std::vector<T>& values) {
   return out;
 }
 
-template <typename T>
-void swap_bytes(T& v) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  std::reverse(b, b + sizeof(T));
-  std::memcpy(&v, b, sizeof(T));
-}
-
 // --- NIfTI files written byte by byte ----------------------------------------------
 
-struct NiftiSpec {
-  std::array<short, 8> dim{3, 1, 1, 1, 1, 1, 1, 1};
-  short datatype = DT_UINT8;
-  short bitpix = 8;
-  std::array<float, 3> pixdim{1.0f, 1.0f, 1.0f};
-  float scl_slope = 0.0f, scl_inter = 0.0f;
-  char xyzt_units = NIFTI_UNITS_MM;
-  bool big_endian = false;
-  bool gzip = false;
+
+struct NiftiSpec : test::NiftiSpec {
+  bool gzip = false;  // write a .nii.gz
 };
 
-// Single-file NIfTI-1 (header, 4-byte extension flag, data at byte 352).
+// Single-file NIfTI-1 (tests/common/nifti_bytes.hpp), gzip-compressed if s.gzip.
 void write_nifti(const fs::path& p, const NiftiSpec& s, std::vector<unsigned char> data) {
-  nifti_1_header h{};
-  h.sizeof_hdr = 348;
-  std::copy(s.dim.begin(), s.dim.end(), h.dim);
-  h.datatype = s.datatype;
-  h.bitpix = s.bitpix;
-  h.pixdim[0] = 1.0f;
-  for (int a = 0; a < 3; ++a) h.pixdim[a + 1] = s.pixdim[a];
-  h.vox_offset = 352.0f;
-  h.scl_slope = s.scl_slope;
-  h.scl_inter = s.scl_inter;
-  h.xyzt_units = s.xyzt_units;
-  std::memcpy(h.magic, "n+1", 4);
-  if (s.big_endian) {
-    swap_bytes(h.sizeof_hdr);
-    for (short& d : h.dim) swap_bytes(d);
-    swap_bytes(h.datatype);
-    swap_bytes(h.bitpix);
-    for (float& d : h.pixdim) swap_bytes(d);
-    swap_bytes(h.vox_offset);
-    swap_bytes(h.scl_slope);
-    swap_bytes(h.scl_inter);
-    const std::size_t width = static_cast<std::size_t>(s.bitpix / 8);
-    for (std::size_t i = 0; width > 1 && i + width <= data.size(); i += width)
-      std::reverse(data.begin() + static_cast<std::ptrdiff_t>(i),
-                   data.begin() + static_cast<std::ptrdiff_t>(i + width));
-  }
-  std::vector<unsigned char> file(352, 0);
-  std::memcpy(file.data(), &h, sizeof h);
-  file.insert(file.end(), data.begin(), data.end());
+  const std::vector<unsigned char> file = test::nifti_bytes(s, std::move(data));
   if (s.gzip) {
     gzFile gz = gzopen(p.c_str(), "wb");
     ASSERT_NE(gz, nullptr) << p;
