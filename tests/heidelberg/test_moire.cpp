@@ -19,6 +19,10 @@
 #include <complex>
 #include <numbers>
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vec3.hpp>
+
 #include "refmodel/render/heidelberg/rotator.hpp"
 #include "tests/heidelberg/fixtures.hpp"
 
@@ -88,28 +92,16 @@ Moire measured(ref::HeidelbergInterpolation interp, double sigma) {
       }
   EXPECT_GT(samples.size(), 40000u);
 
-  // Normal equations of the 3-parameter fit (basis 1, cos, sin).
-  double ata[3][3] = {}, atb[3] = {};
+  // Normal equations of the 3-parameter fit (basis 1, cos, sin), solved by
+  // GLM (the matrix is symmetric, so its column-major layout does not matter).
+  glm::dmat3 ata(0.0);
+  glm::dvec3 atb(0.0);
   for (const auto& [x, y] : samples) {
-    const double b[3] = {1.0, std::cos(kOmega * x), std::sin(kOmega * x)};
-    for (int r = 0; r < 3; ++r) {
-      atb[r] += b[r] * y;
-      for (int c = 0; c < 3; ++c) ata[r][c] += b[r] * b[c];
-    }
+    const glm::dvec3 b(1.0, std::cos(kOmega * x), std::sin(kOmega * x));
+    ata += glm::outerProduct(b, b);
+    atb += b * y;
   }
-  // Cramer's rule on the 3x3 system.
-  const auto det3 = [](const double m[3][3]) {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  };
-  const double d = det3(ata);
-  double coef[3];
-  for (int c = 0; c < 3; ++c) {
-    double m[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int cc = 0; cc < 3; ++cc) m[r][cc] = cc == c ? atb[r] : ata[r][cc];
-    coef[c] = det3(m) / d;
-  }
+  const glm::dvec3 coef = glm::inverse(ata) * atb;
   double residual = 0.0, grating = 0.0;
   for (const auto& [x, y] : samples) {
     const double wave = coef[1] * std::cos(kOmega * x) + coef[2] * std::sin(kOmega * x);
