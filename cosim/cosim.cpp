@@ -177,6 +177,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
     j["ns_per_sample"] = st.ns_per_sample();
     j["samples"] = st.samples;
     if (st.leaps > 0) j["samples_skipped"] = st.samples_skipped;  // docs/leaping.md
+    if (st.issue_bypasses > 0) j["issue_bypasses"] = st.issue_bypasses;  // docs/performance.md §7
     j["row_hit_rate"] = st.row_hit_rate();
     j["stalls"] = {{"issue_no_ray", st.stalls.issue_no_ray},
                    {"issue_buffer_full", st.stalls.issue_buffer_full},

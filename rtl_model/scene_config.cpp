@@ -56,6 +56,8 @@ RtlConfig rtl_config(const ref::RtlDesc& d) {
   p.tile = d.tile;
   p.ray_slots = d.ray_slots;
   p.issue_burst = d.issue_burst;
+  p.issue = pipeline::parse_issue_policy(known("issue", d.issue, {"oldest", "row-hit"}));
+  p.issue_bypass_limit = d.issue_bypass_limit;
   p.sample_buffer = d.sample_buffer;
   if (d.queue_depth < 1 || d.return_depth < 1)
     throw Error("rtl.queue_depth and rtl.return_depth must be at least 1");

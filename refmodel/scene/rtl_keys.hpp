@@ -28,7 +28,9 @@ void for_each_rtl_key(Desc& d, F&& f) {
   f(std::string_view("traversal"), d.traversal);
   f(std::string_view("tile"), d.tile);
   f(std::string_view("ray_slots"), d.ray_slots);
+  f(std::string_view("issue"), d.issue);
   f(std::string_view("issue_burst"), d.issue_burst);
+  f(std::string_view("issue_bypass_limit"), d.issue_bypass_limit);
   f(std::string_view("sample_buffer"), d.sample_buffer);
   f(std::string_view("queue_depth"), d.queue_depth);
   f(std::string_view("return_depth"), d.return_depth);

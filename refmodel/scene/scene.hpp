@@ -93,7 +93,12 @@ struct RtlDesc {
   std::string traversal = "scanline";  // ray order: scanline | tiles
   int tile = 8;                        // tiles: edge in pixels
   int ray_slots = 16;                  // rays in flight
-  int issue_burst = 0;                 // samples per ray before the next; 0 = whole ray
+  // How the address generator picks the ray it issues from: "oldest" (the
+  // oldest ready ray, issue_burst samples at a time) or "row-hit" (the oldest
+  // ray whose next sample hits the rows last requested, ray-level FR-FCFS).
+  std::string issue = "oldest";
+  int issue_burst = 0;                 // oldest: samples per ray before the next; 0 = whole ray
+  int issue_bypass_limit = 64;         // row-hit: issues that may bypass the oldest ready ray
   int sample_buffer = 64;              // samples between address generator and interpolation
   int queue_depth = 8;                 // controller request queue per DIMM
   int return_depth = 8;                // controller read-data return FIFO per DIMM

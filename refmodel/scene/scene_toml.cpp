@@ -542,7 +542,12 @@ void read_rtl(const TableReader& r, const std::string& base_dir, RtlDesc& d) {
   d.traversal = r.string("traversal", d.traversal, rtl_choices("traversal"));
   d.tile = r.integer("tile", d.tile, 1, 8192);
   d.ray_slots = r.integer("ray_slots", d.ray_slots, 1, 1024);
+  d.issue = r.string("issue", d.issue, rtl_choices("issue"));
   d.issue_burst = r.integer("issue_burst", d.issue_burst, 0, 1 << 20);
+  d.issue_bypass_limit = r.integer("issue_bypass_limit", d.issue_bypass_limit, 0, 1 << 20);
+  if (d.issue == "row-hit" && d.issue_burst != 0)
+    r.fail("issue_burst", "= " + std::to_string(d.issue_burst) +
+                              " applies to rtl.issue = \"oldest\" only (row-hit picks a ray every sample)");
   d.sample_buffer = r.integer("sample_buffer", d.sample_buffer, 1, 4096);
   d.queue_depth = r.integer("queue_depth", d.queue_depth, 1, 64);
   d.return_depth = r.integer("return_depth", d.return_depth, 1, 64);
@@ -558,6 +563,7 @@ const std::vector<std::string>& rtl_choices(const std::string& key) {
   static const std::map<std::string, std::vector<std::string>> choices = {
       {"scheduler", {"in-order", "fr-fcfs", "lookahead"}},
       {"refresh", {"eager"}},
+      {"issue", {"oldest", "row-hit"}},
       {"sdram", {"board", "pc100-cl2", "pc100-cl3"}},
       {"layout", {"linear", "bricked", "bricked-swizzled", "morton"}},
       {"traversal", {"scanline", "tiles"}},

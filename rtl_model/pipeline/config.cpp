@@ -15,6 +15,14 @@ Traversal parse_traversal(const std::string& name) {
   throw Error("unknown ray traversal '" + name + "' (known: scanline, tiles)");
 }
 
+const char* to_string(IssuePolicy p) { return p == IssuePolicy::kOldest ? "oldest" : "row-hit"; }
+
+IssuePolicy parse_issue_policy(const std::string& name) {
+  if (name == "oldest") return IssuePolicy::kOldest;
+  if (name == "row-hit") return IssuePolicy::kRowHit;
+  throw Error("unknown issue policy '" + name + "' (known: oldest, row-hit)");
+}
+
 std::vector<std::pair<int, int>> pixel_order(int width, int height, Traversal t, int tile) {
   std::vector<std::pair<int, int>> order;
   order.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
@@ -53,7 +61,12 @@ UnitLatencies elaborate_latencies(UnitLatencies l, const ElaboratedUnits& units)
 std::ostream& operator<<(std::ostream& os, const PipelineConfig& c) {
   os << c.ray_slots << " ray slots, " << to_string(c.traversal);
   if (c.traversal == Traversal::kTiles) os << " " << c.tile;
-  return os << " traversal, issue burst " << c.issue_burst << ", sample buffer "
+  os << " traversal, issue " << to_string(c.issue);
+  if (c.issue == IssuePolicy::kOldest)
+    os << " (burst " << c.issue_burst << ")";
+  else
+    os << " (bypass limit " << c.issue_bypass_limit << ")";
+  return os << ", sample buffer "
             << c.sample_buffer << ", FIFO skid " << c.fifo_depth << ", output " << c.output_depth
             << ", " << c.latency << "; controller queue " << c.controller.queue_depth
             << ", return " << c.controller.return_depth;

@@ -28,6 +28,25 @@ const char* to_string(Traversal t);
 // "scanline" | "tiles"; throws voxcast::Error otherwise.
 Traversal parse_traversal(const std::string& name);
 
+// How the address generator picks the ray whose next sample it issues
+// (ray_pipeline.hpp, docs/performance.md §7).
+enum class IssuePolicy : std::uint8_t {
+  // The oldest ready ray, issue_burst samples at a time (VIZARD II: a ray to
+  // its end).
+  kOldest,
+  // Ray-level FR-FCFS: the oldest ready ray whose next sample's four DIMM
+  // words lie in the rows last requested in their banks (most DIMMs hit
+  // first), else the oldest ready ray. The oldest ready ray is bypassed at
+  // most issue_bypass_limit times in a row. In hardware: each ray slot holds
+  // its next sample's (bank, row) per DIMM, computed by the address generator
+  // one sample ahead, compared against 4 x 4 last-row registers.
+  kRowHit,
+};
+
+const char* to_string(IssuePolicy p);
+// "oldest" | "row-hit"; throws voxcast::Error otherwise.
+IssuePolicy parse_issue_policy(const std::string& name);
+
 // The order in which the ray setup unit takes the pixels: (x, y) pairs.
 std::vector<std::pair<int, int>> pixel_order(int width, int height, Traversal t, int tile);
 
@@ -87,6 +106,8 @@ struct PipelineConfig {
   // next ray with samples left; 0: a ray is issued to its end (or its early
   // termination) before the next one starts.
   int issue_burst = 0;
+  IssuePolicy issue = IssuePolicy::kOldest;
+  int issue_bypass_limit = 64;  // kRowHit: issues that may bypass the oldest ready ray
   int sample_buffer = 64;   // samples in flight between address generator and interpolation
   int fifo_depth = 4;       // skid entries between stages (added to each stage's latency)
   int output_depth = 16;    // finished pixels waiting for the frame buffer

@@ -15,9 +15,11 @@
 //     ray_setup_interval clocks; a ray that enters the volume waits for a free
 //     ray slot and is ready `ray_setup` clocks later. A ray that misses takes
 //     no slot and leaves a background pixel after the same latency.
-//   - The address generator issues one sample per clock from the oldest ready
-//     ray (issue_burst samples at a time, or the whole ray), one request to
-//     each DIMM, if the sample buffer and all four request FIFOs have room.
+//   - The address generator issues one sample per clock, one request to each
+//     DIMM, if the sample buffer and all four request FIFOs have room. It
+//     takes the sample from the oldest ready ray (issue_burst samples at a
+//     time, or the whole ray), or with IssuePolicy::kRowHit from the oldest
+//     ready ray whose next sample hits the rows it last requested.
 //   - The controllers (rtl_model/sdram) serve the requests; each completion
 //     fills its sample's word by the request id (any order). The interpolation
 //     stage takes samples in issue order once all four words are in.
@@ -93,6 +95,11 @@ class RayPipeline {
     slots_.resize(static_cast<std::size_t>(config.ray_slots));
     buf_.resize(static_cast<std::size_t>(config.sample_buffer));
     for (int i = 0; i < config.ray_slots; ++i) free_.push(i);
+    if (config.issue == IssuePolicy::kRowHit && config.issue_burst != 0)
+      throw Error("rtl pipeline: issue_burst applies to the oldest-ray issue policy only");
+    if (config.issue_bypass_limit < 0)
+      throw Error("rtl pipeline: issue_bypass_limit must be at least 0");
+    for (auto& rows : last_row_) rows.assign(mapping.geometry().banks, kNoRow);
     for (int d = 0; d < layout::kDimms; ++d) {
       req_.emplace_back("dimm" + std::to_string(d) + ".request", depth(config_.latency.address));
       ports_.push_back(make_memory_port(config.memory_model, scheduler, refresh, config.dimm,
@@ -213,6 +220,12 @@ class RayPipeline {
     typename G::step_t s[3];
     hls::Accumulator<P> acc;
     typename C::value_t peak = 0;
+    // The next sample's bank access and DIMM addresses, computed once and
+    // held until it is issued (row-hit issue compares them every clock).
+    bool next_known = false;
+    hls::BankAccess<P> next_access;
+    std::array<layout::WordCoord, layout::kDimms> next_coord{};
+    std::array<sdram::Address, layout::kDimms> next_addr{};
   };
   struct Buffered {  // one sample between address generator and interpolation
     int slot = 0;
@@ -293,7 +306,12 @@ class RayPipeline {
     if (interp_.valid()) later(interp_.front().ready);
     if (class_.valid()) later(class_.front().ready);
     if (shade_.valid()) later(shade_.front().ready);
-    if (issue_q_.valid()) later(slots_[static_cast<std::size_t>(issue_q_.front())].ready_at);
+    if (config_.issue == IssuePolicy::kRowHit) {
+      for (std::size_t k = 0; k < issue_q_.size(); ++k)
+        later(slots_[static_cast<std::size_t>(issue_q_.at(k))].ready_at);
+    } else if (issue_q_.valid()) {
+      later(slots_[static_cast<std::size_t>(issue_q_.front())].ready_at);
+    }
     if (next_pixel_ < order_.size()) later(setup_next_);
     return t;
   }
@@ -484,24 +502,19 @@ class RayPipeline {
   }
 
   void issue(Cycle now) {
-    while (issue_q_.valid() && slots_[static_cast<std::size_t>(issue_q_.front())].finished) {
-      const int i = issue_q_.pop();
-      ++events_;
-      slots_[static_cast<std::size_t>(i)].in_issue = false;
-      burst_count_ = 0;
-      try_free(i);
-    }
+    retire_finished_rays();
     if (!issue_q_.valid()) {
       ++(next_pixel_ == order_.size() ? stats_.stalls.issue_idle : stats_.stalls.issue_no_ray);
       return;
     }
-    const int i = issue_q_.front();
-    Slot& s = slots_[static_cast<std::size_t>(i)];
-    if (s.ready_at > now) {
+    const std::size_t j = pick_ray(now);
+    if (j == kNone) {
       ++stats_.stalls.issue_no_ray;
       return;
     }
-    if (leap_ && try_leap(now, i, s)) return;
+    const int i = issue_q_.at(j);
+    Slot& s = slots_[static_cast<std::size_t>(i)];
+    if (leap_ && try_leap(now, j, s)) return;
     if (buf_count_ == buf_.size()) {
       ++stats_.stalls.issue_buffer_full;
       return;
@@ -511,16 +524,18 @@ class RayPipeline {
         ++stats_.stalls.issue_memory_full;
         return;
       }
+    if (config_.issue == IssuePolicy::kRowHit) count_bypass(j, now);
     // The sample's bank access (hls address generator), its neighbourhood's
     // four DIMM words, one request to each DIMM.
+    know_next_sample(s);
     std::size_t tail = buf_head_ + buf_count_;
     if (tail >= buf_.size()) tail -= buf_.size();
     Buffered& b = buf_[tail];
     b.slot = i;
     b.k = s.issued;
     b.arrived = 0;
-    b.access = hls::address_generator<P>(f_.geometry, s.p);
-    b.coord = layout::Vizard2Layout::neighbourhood(layout_.corner<P>(b.access));
+    b.access = s.next_access;
+    b.coord = s.next_coord;
     for (std::size_t d = 0; d < layout::kDimms; ++d)
       memory_.prefetch(static_cast<int>(d), b.coord[d]);  // host cache only: no model effect
     ++buf_count_;
@@ -529,7 +544,8 @@ class RayPipeline {
       t.ready = now + config_.latency.address + config_.latency.leap_lookup;
       t.request.id = tail;
       t.request.kind = sdram::RequestKind::kRead;
-      t.request.address = mapping_.map(b.coord[d]);
+      t.request.address = s.next_addr[d];
+      last_row_[d][s.next_addr[d].bank] = s.next_addr[d].row;
       req_[d].push(t);
     }
     ++events_;
@@ -538,36 +554,116 @@ class RayPipeline {
     ++stats_.samples_issued;
     ++s.next;
     hls::step_position<P>(s.p, s.s);
+    s.next_known = false;
     if (s.next == s.n) {
-      end_issue(i, s);
+      end_issue(j, i, s);
     } else if (config_.issue_burst > 0 && ++burst_count_ >= config_.issue_burst) {
       burst_count_ = 0;
       issue_q_.push(issue_q_.pop());
     }
   }
 
-  // Space leaping: if the front ray's next sample lies in an empty block, leap
+  // Rays ended by early ray termination leave the issue queue: from its front
+  // when the address generator takes the oldest ray (the baseline's queue),
+  // from any place in the collapsing queue of row-hit issue.
+  void retire_finished_rays() {
+    auto retire = [this](std::size_t k) {
+      const int i = issue_q_.take(k);
+      ++events_;
+      slots_[static_cast<std::size_t>(i)].in_issue = false;
+      burst_count_ = 0;
+      try_free(i);
+    };
+    if (config_.issue == IssuePolicy::kOldest) {
+      while (issue_q_.valid() && slots_[static_cast<std::size_t>(issue_q_.front())].finished)
+        retire(0);
+      return;
+    }
+    for (std::size_t k = issue_q_.size(); k-- > 0;)
+      if (slots_[static_cast<std::size_t>(issue_q_.at(k))].finished) retire(k);
+  }
+
+  // The place in the issue queue of the ray to issue from at `now`, or kNone
+  // when that ray (oldest) or every ray (row-hit) is still in set-up or
+  // waiting for a leap.
+  std::size_t pick_ray(Cycle now) {
+    if (config_.issue == IssuePolicy::kOldest)
+      return slots_[static_cast<std::size_t>(issue_q_.front())].ready_at > now ? kNone : 0;
+    std::size_t oldest = kNone, best = kNone;
+    int best_hits = 0;
+    for (std::size_t k = 0; k < issue_q_.size(); ++k) {
+      Slot& s = slots_[static_cast<std::size_t>(issue_q_.at(k))];
+      if (s.ready_at > now) continue;
+      if (oldest == kNone) {
+        oldest = k;
+        if (bypass_ >= config_.issue_bypass_limit) return oldest;
+      }
+      const int hits = row_hits(s);
+      if (hits > best_hits) {
+        best_hits = hits;
+        best = k;
+        if (hits == layout::kDimms) break;
+      }
+    }
+    return best == kNone ? oldest : best;
+  }
+
+  // How many of the ray's next sample's four DIMM words lie in the row last
+  // requested in their bank.
+  int row_hits(Slot& s) {
+    know_next_sample(s);
+    int hits = 0;
+    for (std::size_t d = 0; d < layout::kDimms; ++d)
+      hits += last_row_[d][s.next_addr[d].bank] == s.next_addr[d].row ? 1 : 0;
+    return hits;
+  }
+
+  // Row-hit issue: a sample from any ray but the oldest ready one bypasses it.
+  void count_bypass(std::size_t j, Cycle now) {
+    for (std::size_t k = 0; k < j; ++k)
+      if (slots_[static_cast<std::size_t>(issue_q_.at(k))].ready_at <= now) {
+        ++bypass_;
+        ++stats_.issue_bypasses;
+        stats_.issue_longest_bypass =
+            std::max(stats_.issue_longest_bypass, static_cast<std::uint64_t>(bypass_));
+        return;
+      }
+    bypass_ = 0;
+  }
+
+  void know_next_sample(Slot& s) {
+    if (s.next_known) return;
+    s.next_access = hls::address_generator<P>(f_.geometry, s.p);
+    s.next_coord = layout::Vizard2Layout::neighbourhood(layout_.corner<P>(s.next_access));
+    for (std::size_t d = 0; d < layout::kDimms; ++d) s.next_addr[d] = mapping_.map(s.next_coord[d]);
+    s.next_known = true;
+  }
+
+  // Space leaping: if the chosen ray's next sample lies in an empty block, leap
   // to the first sample after the block (hls::leap_run) instead of issuing; the
-  // ray's issue waits latency.leap clocks. True if it leapt.
-  bool try_leap(Cycle now, int i, Slot& s) {
+  // ray's issue waits latency.leap clocks. True if it leapt. `j` is the ray's
+  // place in the issue queue.
+  bool try_leap(Cycle now, std::size_t j, Slot& s) {
     typename hls::LeapParams<P>::bcoord_t b[3];
     if (!hls::sample_block_empty<P>(f_.geometry, f_.leap, f_.minmax, s.p, b)) return false;
     const std::uint64_t run = hls::leap_run<P>(f_.geometry, f_.leap, s.p, s.s, s.n - s.next, b);
     hls::step_position<P>(s.p, s.s);
     s.next += run;
+    s.next_known = false;
     s.ready_at = now + static_cast<Cycle>(std::max(config_.latency.leap, 1));
     stats_.samples_skipped += run;
     ++stats_.leaps;
     ++events_;
-    if (s.next == s.n) end_issue(i, s);
+    if (s.next == s.n) end_issue(j, issue_q_.at(j), s);
     return true;
   }
 
-  // The front ray `i` has no sample left to issue. If none of its samples is
-  // in flight either (they composited, or all were leapt over), its pixel
-  // leaves through leapt_; otherwise the compositor ends it.
-  void end_issue(int i, Slot& s) {
-    issue_q_.pop();
+  // Ray `i`, at place `j` of the issue queue, has no sample left to issue. If
+  // none of its samples is in flight either (they composited, or all were
+  // leapt over), its pixel leaves through leapt_; otherwise the compositor
+  // ends it.
+  void end_issue(std::size_t j, int i, Slot& s) {
+    issue_q_.take(j);
     s.in_issue = false;
     s.issue_done = true;
     burst_count_ = 0;
@@ -753,6 +849,11 @@ class RayPipeline {
   std::size_t written_ = 0;
   Cycle setup_next_ = 0;
   int burst_count_ = 0;
+  int bypass_ = 0;  // row-hit issues in a row that bypassed the oldest ready ray
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  static constexpr std::uint32_t kNoRow = std::numeric_limits<std::uint32_t>::max();
+  // Per DIMM and bank, the row of the last request the address generator sent.
+  std::array<std::vector<std::uint32_t>, layout::kDimms> last_row_;
   std::uint64_t events_ = 0;
   ref::QuantImage* image_ = nullptr;
 

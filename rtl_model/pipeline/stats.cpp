@@ -83,6 +83,10 @@ std::ostream& operator<<(std::ostream& os, const RtlStats& s) {
   if (s.leaps > 0)
     os << "space leaping: " << s.samples_skipped << " samples skipped in " << s.leaps
        << " leaps\n";
+  if (s.issue_bypasses > 0)
+    os << "row-hit issue: " << s.issue_bypasses
+       << " samples issued ahead of the oldest ready ray (at most " << s.issue_longest_bypass
+       << " in a row)\n";
   os << "memory: row hits " << s.row_hits() << ", misses " << s.row_misses() << ", conflicts "
      << s.row_conflicts() << " (hit rate " << s.row_hit_rate() << "); activates "
      << s.activates() << ", refreshes " << s.refreshes() << "; " << s.bandwidth_mb_s()

@@ -55,6 +55,8 @@ struct RtlStats {
   std::uint64_t samples_discarded = 0;  // issued beyond an early termination
   std::uint64_t samples_skipped = 0;    // space leaping: never issued (docs/leaping.md)
   std::uint64_t leaps = 0;              // space leaping: empty blocks leapt over
+  std::uint64_t issue_bypasses = 0;     // row-hit issue: samples issued ahead of the oldest ready ray
+  std::uint64_t issue_longest_bypass = 0;  // row-hit issue: most bypasses of one oldest ray in a row
   std::array<DimmReport, 4> dimms{};
   StallStats stalls;
   std::vector<NamedFifoStats> fifos;

@@ -92,6 +92,25 @@ class Fifo {
     return value;
   }
 
+  // The i-th entry from the front (0 = front()); for a consumer that picks
+  // among the entries (a collapsing issue queue).
+  const T& at(std::size_t i) const {
+    if (i >= count_) fail("at() past the last entry");
+    return slots_[wrap(head_ + i)];
+  }
+
+  // Removes and returns the i-th entry; the entries behind it move up one
+  // place, so the order of the rest is kept (take(0) == pop()).
+  T take(std::size_t i) {
+    if (i >= count_) fail("take() past the last entry");
+    T value = std::move(slots_[wrap(head_ + i)]);
+    for (std::size_t k = i; k + 1 < count_; ++k)
+      slots_[wrap(head_ + k)] = std::move(slots_[wrap(head_ + k + 1)]);
+    --count_;
+    ++stats_.pops;
+    return value;
+  }
+
   // One clock of the FIFO's domain: accumulate the occupancy statistics.
   void sample() {
     ++stats_.sampled_cycles;

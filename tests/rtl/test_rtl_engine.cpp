@@ -135,6 +135,24 @@ TEST(RtlEngine, EveryOrganisationGivesTheSameImage) {
          c.scheduler = "lookahead";
        }},
       {"round robin", [](rtl::RtlConfig& c) { c.pipeline.issue_burst = 1; }},
+      // Row-hit issue interleaves the rays' samples in any order.
+      {"row-hit", [](rtl::RtlConfig& c) { c.pipeline.issue = rtl::pipeline::IssuePolicy::kRowHit; }},
+      {"row-hit, bricked-swizzled, lookahead, tiles, 64 slots, limit 3",
+       [](rtl::RtlConfig& c) {
+         c.pipeline.issue = rtl::pipeline::IssuePolicy::kRowHit;
+         c.pipeline.issue_bypass_limit = 3;
+         c.pipeline.ray_slots = 64;
+         c.pipeline.traversal = rtl::pipeline::Traversal::kTiles;
+         c.mapping.name = "bricked-swizzled";
+         c.scheduler = "lookahead";
+       }},
+      {"row-hit, 1 ray slot, tiny buffers",
+       [](rtl::RtlConfig& c) {
+         c.pipeline.issue = rtl::pipeline::IssuePolicy::kRowHit;
+         c.pipeline.ray_slots = 1;
+         c.pipeline.sample_buffer = 1;
+         c.pipeline.controller.queue_depth = 1;
+       }},
       {"1 ray slot", [](rtl::RtlConfig& c) { c.pipeline.ray_slots = 1; }},
       {"tiny buffers",
        [](rtl::RtlConfig& c) {

@@ -53,7 +53,7 @@ TEST(RtlScene, EveryKeyReachesTheConfiguration) {
       {"rtl.scheduler=fr-fcfs", "rtl.reorder_window=4", "rtl.starvation_limit=9",
        "rtl.refresh_postpone=2", "rtl.sdram=pc100-cl3", "rtl.layout=bricked",
        "rtl.brick=[4, 2, 8]", "rtl.traversal=tiles", "rtl.tile=16", "rtl.ray_slots=32",
-       "rtl.issue_burst=3", "rtl.sample_buffer=128", "rtl.queue_depth=12",
+"rtl.issue_burst=3", "rtl.issue_bypass_limit=5", "rtl.sample_buffer=128", "rtl.queue_depth=12",
        "rtl.return_depth=6", "rtl.refresh=eager"});
   const rtl::RtlConfig c = rtl::rtl_config(s.rtl);
   EXPECT_EQ(c.scheduler, "fr-fcfs");
@@ -67,6 +67,8 @@ TEST(RtlScene, EveryKeyReachesTheConfiguration) {
   EXPECT_EQ(c.pipeline.tile, 16);
   EXPECT_EQ(c.pipeline.ray_slots, 32);
   EXPECT_EQ(c.pipeline.issue_burst, 3);
+  EXPECT_EQ(c.pipeline.issue, rtl::pipeline::IssuePolicy::kOldest);
+  EXPECT_EQ(c.pipeline.issue_bypass_limit, 5);
   EXPECT_EQ(c.pipeline.sample_buffer, 128);
   EXPECT_EQ(c.pipeline.controller.queue_depth, 12u);
   EXPECT_EQ(c.pipeline.controller.return_depth, 6u);
@@ -87,6 +89,12 @@ TEST(RtlScene, BadValuesAreOneLineErrorsNamingKeyAndKnownValues) {
   EXPECT_NE(error_of({"rtl.traversal=spiral"}).find("rtl.traversal"), std::string::npos);
   EXPECT_NE(error_of({"rtl.sdram=ddr4"}).find("\"pc100-cl2\", \"pc100-cl3\""), std::string::npos);
   EXPECT_NE(error_of({"rtl.refresh=lazy"}).find("rtl.refresh"), std::string::npos);
+  EXPECT_NE(error_of({"rtl.issue=youngest"}).find("\"oldest\", \"row-hit\""), std::string::npos);
+  EXPECT_NE(error_of({"rtl.issue=row-hit", "rtl.issue_burst=2"})
+                .find("rtl.issue_burst = 2 applies to rtl.issue = \"oldest\" only"),
+            std::string::npos);
+  EXPECT_EQ(rtl::rtl_config(ref::default_scene({"rtl.issue=row-hit"}).rtl).pipeline.issue,
+            rtl::pipeline::IssuePolicy::kRowHit);
   EXPECT_NE(error_of({"rtl.brick=[3, 8, 8]"}).find("powers of two"), std::string::npos);
   EXPECT_NE(error_of({"rtl.ray_slots=0"}).find("rtl.ray_slots = 0 is outside"), std::string::npos);
   EXPECT_NE(error_of({"rtl.reorder_window=16"}).find("exceeds rtl.queue_depth"), std::string::npos);

@@ -131,6 +131,30 @@ TEST(Fifo, KeepsOrderAcrossWrapAround) {
   EXPECT_EQ(f.stats().max_occupancy, 3u);
 }
 
+// The collapsing queue of row-hit issue: taking an entry from the middle keeps
+// the order of the rest, across the wrap-around of the ring.
+TEST(Fifo, TakeFromTheMiddleKeepsTheOrderOfTheRest) {
+  Fifo<int> f("collapse", 4);
+  for (int v = 0; v < 3; ++v) f.push(v);
+  EXPECT_EQ(f.pop(), 0);
+  f.push(3);
+  f.push(4);  // the ring now wraps: 1 2 3 4
+  ASSERT_TRUE(f.full());
+  EXPECT_EQ(f.at(2), 3);
+  EXPECT_EQ(f.take(2), 3);  // 1 2 4
+  EXPECT_EQ(f.size(), 3u);
+  f.push(5);  // 1 2 4 5
+  EXPECT_EQ(f.take(0), 1);
+  EXPECT_EQ(f.take(2), 5);
+  EXPECT_EQ(f.pop(), 2);
+  EXPECT_EQ(f.pop(), 4);
+  EXPECT_TRUE(f.empty());
+  EXPECT_EQ(f.stats().pushes, f.stats().pops);
+  expect_error([&f] { f.take(0); }, {"collapse", "take() past the last entry"});
+  f.push(7);
+  expect_error([&f] { (void)f.at(1); }, {"collapse", "at() past the last entry"});
+}
+
 TEST(Fifo, OccupancyStatisticsAreMemberCounters) {
   Fifo<int> f("stats", 4);
   // Occupancy 0, 1, 2, 3, 4 over five sampled cycles: mean 2, one full, one empty.
