@@ -167,25 +167,35 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
     const std::filesystem::path dir = std::filesystem::path(out).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir);
   }
-  // The VCD trace: the first view only (a trace is one frame's cycles).
-  std::ofstream vcd;
+  // The VCD trace: one file per view (a trace is one frame's cycles), named
+  // like the images: trace.vcd, or trace_L.vcd / trace_0003.vcd for the views
+  // of a stereo pair or a camera path.
   rtl::trace::TraceOptions trace;
   if (!options.vcd_path.empty()) {
     if (!options.vcd_window.empty()) trace = rtl::trace::parse_window(options.vcd_window, "--vcd-window");
     const std::filesystem::path dir = std::filesystem::path(options.vcd_path).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir);
-    vcd.open(options.vcd_path);
-    if (!vcd) throw Error(options.vcd_path + ": cannot write the VCD trace");
-    trace.out = &vcd;
   }
   const auto t_render = Clock::now();
-  bool first_view = true;
   for (const View& view : views_of(scene)) {
     ref::FrameStats fs;
+    std::ofstream vcd;
+    const std::string vcd_path =
+        options.vcd_path.empty() ? std::string() : with_suffix(options.vcd_path, view.suffix);
+    if (!vcd_path.empty()) {
+      vcd.open(vcd_path);
+      if (!vcd) throw Error(vcd_path + ": cannot write the VCD trace");
+      trace.out = &vcd;
+    }
     const ref::Image img = render_view(scene, volume, gradients, view.pose, options.engine,
                                        memory ? &*memory : nullptr, fs, s,
-                                       first_view && trace.out ? &trace : nullptr);
-    first_view = false;
+                                       vcd_path.empty() ? nullptr : &trace);
+    if (!vcd_path.empty()) {
+      vcd.close();
+      if (!vcd) throw Error(vcd_path + ": error writing the VCD trace");
+      s.written.push_back(vcd_path);
+      trace.out = nullptr;
+    }
     s.stats.samples += fs.samples;
     s.stats.rays += fs.rays;
     s.stats.rays_hit += fs.rays_hit;
@@ -197,11 +207,6 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
     }
   }
   s.render_seconds = seconds_since(t_render);
-  if (trace.out) {
-    vcd.close();
-    if (!vcd) throw Error(options.vcd_path + ": error writing the VCD trace");
-    s.written.push_back(options.vcd_path);
-  }
   if (!options.report_json.empty()) {
     write_report(options.report_json, scene, s);
     s.written.push_back(options.report_json);

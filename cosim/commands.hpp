@@ -18,8 +18,9 @@ struct RenderOptions {
   std::vector<std::string> outputs;  // each .png or .exr; the same frames go to each
   std::string report_json;           // optional JSON report path
   Engine engine = Engine::Ref;
-  // rtl engine: a VCD trace of the first view (rtl_model/trace/), and its
-  // window of cycles "START:END" (empty: the whole frame).
+  // rtl engine: a VCD trace of each view (rtl_model/trace/; a stereo pair or
+  // a path adds the image's suffix to the name), and its window of cycles
+  // "START:END" of each frame (empty: the whole frame).
   std::string vcd_path = {};
   std::string vcd_window = {};
 };

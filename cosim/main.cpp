@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
                      "ref (double), bittrue (bit-true reference), hls, or rtl (cycle model)")
       ->capture_default_str();
   render->add_option("--vcd", render_opts.vcd_path,
-                     "rtl engine: write a VCD trace (FIFO handshakes, SDRAM commands) of the frame");
+                     "rtl engine: write a VCD trace (FIFO handshakes, SDRAM commands) of each frame "
+                     "(a stereo pair or path: one file per view, named like the images)");
   render->add_option("--vcd-window", render_opts.vcd_window,
                      "rtl engine: cycles START:END (inclusive) the VCD covers");
   add_set_option(*render, render_sets);

@@ -60,6 +60,40 @@ TEST(Cli, StereoWritesTwoEyes) {
   EXPECT_TRUE(std::filesystem::exists(d / "s_right.png"));
 }
 
+// The cycle model's VCD trace is one frame's: a stereo pair writes one per eye,
+// named like the images; one view writes exactly the path given.
+TEST(Cli, VcdTraceIsWrittenForEveryView) {
+  const auto d = temp_dir("vcd");
+  auto text = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  const std::string small = " --engine rtl --set render.width=12 --set render.height=12";
+  Command r = run("render " + scene("mip.toml") + " -o " + (d / "s.png").string() + " --vcd " +
+                  (d / "t.vcd").string() + " --set camera.stereo_deg=4" + small);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(d / "t.vcd"));
+  for (const char* eye : {"t_left.vcd", "t_right.vcd"}) {
+    const std::string vcd = text(d / eye);
+    EXPECT_NE(vcd.find("$enddefinitions $end"), std::string::npos) << eye;
+    // The frame's cycles follow the header, from cycle 0.
+    EXPECT_NE(vcd.find("$enddefinitions $end\n#0\n"), std::string::npos) << eye;
+    std::size_t stamps = 0;
+    for (std::size_t at = vcd.find("\n#"); at != std::string::npos; at = vcd.find("\n#", at + 1))
+      ++stamps;
+    EXPECT_GT(stamps, 100u) << eye;
+    EXPECT_NE(r.output.find("wrote    " + (d / eye).string()), std::string::npos) << r.output;
+  }
+  // The eyes see the volume from different angles: different command streams.
+  EXPECT_NE(text(d / "t_left.vcd"), text(d / "t_right.vcd"));
+  r = run("render " + scene("mip.toml") + " -o " + (d / "m.png").string() + " --vcd " +
+          (d / "m.vcd").string() + small);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(text(d / "m.vcd").find("$enddefinitions $end"), std::string::npos);
+}
+
 TEST(Cli, ErrorsAreOneLineAndNonZero) {
   const auto d = temp_dir("errors");
   const std::string out = " -o " + (d / "x.png").string();
