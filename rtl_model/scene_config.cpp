@@ -63,6 +63,7 @@ RtlConfig rtl_config(const ref::RtlDesc& d) {
     throw Error("rtl.queue_depth and rtl.return_depth must be at least 1");
   p.controller.queue_depth = static_cast<std::size_t>(d.queue_depth);
   p.controller.return_depth = static_cast<std::size_t>(d.return_depth);
+  p.controller.auto_precharge = d.auto_precharge;
   p.scheduler_params.reorder_window = d.reorder_window;
   p.scheduler_params.starvation_limit = d.starvation_limit;
   if (d.sdram != "board") p.dimm.timing = sdram_preset(d.sdram);

@@ -102,6 +102,7 @@ struct RtlDesc {
   int sample_buffer = 64;              // samples between address generator and interpolation
   int queue_depth = 8;                 // controller request queue per DIMM
   int return_depth = 8;                // controller read-data return FIFO per DIMM
+  bool auto_precharge = false;         // a row's last queued READ closes it (RDA); false: open page
 };
 // --- VIRIM: the Heidelberg Raytracing Model (docs/heidelberg.md) ----------------
 enum class Algorithm { Raycast, Heidelberg };

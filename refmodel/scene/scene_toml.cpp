@@ -551,6 +551,7 @@ void read_rtl(const TableReader& r, const std::string& base_dir, RtlDesc& d) {
   d.sample_buffer = r.integer("sample_buffer", d.sample_buffer, 1, 4096);
   d.queue_depth = r.integer("queue_depth", d.queue_depth, 1, 64);
   d.return_depth = r.integer("return_depth", d.return_depth, 1, 64);
+  d.auto_precharge = r.boolean("auto_precharge", d.auto_precharge);
   if (d.reorder_window > d.queue_depth)
     r.fail("reorder_window", "= " + std::to_string(d.reorder_window) +
                                  " exceeds rtl.queue_depth = " + std::to_string(d.queue_depth) +

@@ -69,7 +69,8 @@ std::ostream& operator<<(std::ostream& os, const PipelineConfig& c) {
   return os << ", sample buffer "
             << c.sample_buffer << ", FIFO skid " << c.fifo_depth << ", output " << c.output_depth
             << ", " << c.latency << "; controller queue " << c.controller.queue_depth
-            << ", return " << c.controller.return_depth;
+            << ", return " << c.controller.return_depth
+            << (c.controller.auto_precharge ? ", auto precharge" : ", open page");
 }
 
 }  // namespace voxcast::rtl::pipeline

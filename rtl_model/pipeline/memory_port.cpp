@@ -15,7 +15,9 @@ std::unique_ptr<MemoryPort> make_memory_port(MemoryModel model, const std::strin
   // Both names are checked even when the fast port is used.
   auto s = sched::make_scheduler(scheduler, params);
   auto r = sched::make_refresh_policy(refresh);
-  const bool in_order_eager = scheduler == "in-order" && refresh == "eager";
+  // The fast port implements the open-page in-order controller only.
+  const bool in_order_eager =
+      scheduler == "in-order" && refresh == "eager" && !controller.auto_precharge;
   if (model == MemoryModel::kAuto && in_order_eager)
     return std::make_unique<FastInOrderPort>(dimm, controller);
   return std::make_unique<ReferencePort>(

@@ -57,7 +57,7 @@ class MemoryPort {
 
 // The memory model of a run.
 enum class MemoryModel : std::uint8_t {
-  kAuto,       // FastInOrderPort for in-order + eager, ReferencePort otherwise
+  kAuto,       // FastInOrderPort for in-order + eager + open page, ReferencePort otherwise
   kReference,  // always the reference controller
 };
 

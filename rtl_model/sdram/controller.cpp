@@ -38,7 +38,8 @@ std::ostream& operator<<(std::ostream& os, const ControllerStats& s) {
             << " miss / " << s.row_conflicts << " conflict, " << s.completed << " completed, "
             << s.bytes << " bytes, mean latency " << s.mean_latency() << " (max " << s.latency_max
             << ") cycles, command bus busy " << s.command_cycles << " cycles, refreshing "
-            << s.refresh_cycles << " cycles";
+            << s.refresh_cycles << " cycles" << (s.auto_precharges > 0 ? ", " : "")
+            << (s.auto_precharges > 0 ? std::to_string(s.auto_precharges) + " reads with auto precharge" : "");
 }
 
 // ---- Controller --------------------------------------------------------------------------
@@ -143,8 +144,15 @@ void Controller::schedule(Cycle now) {
     fail("a column command must serve a request");
   }
 
-  // Step 2: issue; the Dimm rejects anything illegal.
-  const Issued issued = dimm_.issue(d->command, d->address, now);
+  // Step 2: issue; the Dimm rejects anything illegal. With auto_precharge, a
+  // READ that is the last the queue holds for its row closes the row itself.
+  Command command = d->command;
+  if (config_.auto_precharge && command == Command::kRd && !row_wanted_by_another(*d->request) &&
+      dimm_.can_issue(Command::kRda, d->address, now)) {
+    command = Command::kRda;
+    ++stats_.auto_precharges;
+  }
+  const Issued issued = dimm_.issue(command, d->address, now);
   ++stats_.command_cycles;
   if (!d->request) return;
 
@@ -176,6 +184,15 @@ void Controller::schedule(Cycle now) {
     });
     pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(*d->request));
   }
+}
+
+bool Controller::row_wanted_by_another(std::size_t request) const {
+  const Address& a = pending_[request].request.address;
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    const Address& b = pending_[i].request.address;
+    if (i != request && b.bank == a.bank && b.row == a.row) return true;
+  }
+  return false;
 }
 
 void Controller::retire(Cycle now) {

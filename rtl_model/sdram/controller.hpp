@@ -37,6 +37,11 @@ namespace voxcast::rtl::sdram {
 struct ControllerConfig {
   std::size_t queue_depth = 8;   // pending requests (the scheduler's window at most)
   std::size_t return_depth = 8;  // completions FIFO entries
+  // Adaptive page policy: a READ whose row no other pending request wants is
+  // issued as READ with auto precharge (when tRAS allows it then), so the
+  // row change that follows costs an ACT but no PRE on the command bus. Off:
+  // open page, rows closed by PRE (VIZARD II).
+  bool auto_precharge = false;
 };
 
 // A served request.
@@ -61,6 +66,7 @@ struct ControllerStats {
   std::uint64_t row_hits = 0;
   std::uint64_t row_misses = 0;
   std::uint64_t row_conflicts = 0;
+  std::uint64_t auto_precharges = 0;  // READs issued as RDA (auto_precharge)
   std::uint64_t bytes = 0;   // data moved by completed accesses
   Cycle command_cycles = 0;  // cycles with a command on the bus
   Cycle refresh_cycles = 0;  // cycles spent in refresh sequences
@@ -117,6 +123,7 @@ class Controller {
   bool step_refresh(Cycle now);  // true while a refresh sequence owns the bus
   void schedule(Cycle now);
   bool column_allowed() const;
+  bool row_wanted_by_another(std::size_t request) const;
 
   Dimm dimm_;
   std::unique_ptr<CommandScheduler> scheduler_;

@@ -19,6 +19,7 @@ std::string describe(Command cmd, const Address& a) {
       break;
     case Command::kRd:
     case Command::kWr:
+    case Command::kRda:
       os << " to bank " << a.bank << " row " << a.row << " col " << a.column;
       break;
     case Command::kPre:
@@ -71,6 +72,7 @@ BankStats DimmStats::total() const {
     t.reads += b.reads;
     t.writes += b.writes;
     t.precharges += b.precharges;
+    t.auto_precharges += b.auto_precharges;
     t.open_cycles += b.open_cycles;
   }
   return t;
@@ -79,7 +81,8 @@ BankStats DimmStats::total() const {
 std::ostream& operator<<(std::ostream& os, const DimmStats& s) {
   const BankStats t = s.total();
   os << s.commands << " commands: " << t.activates << " ACT, " << t.reads << " RD, " << t.writes
-     << " WR, " << t.precharges << " rows closed (" << s.precharge_alls << " PREA), " << s.refreshes
+     << " WR, " << t.precharges << " rows closed (" << s.precharge_alls << " PREA, "
+     << t.auto_precharges << " by RDA), " << s.refreshes
      << " REF; data bus busy " << s.data_bus_busy_cycles << " cycles, refresh busy "
      << s.refresh_busy_cycles << " cycles";
   for (std::size_t b = 0; b < s.banks.size(); ++b) {
@@ -296,7 +299,8 @@ bool Dimm::check_state(Command cmd, const Address& a, std::string* why) const {
       return true;
     }
     case Command::kRd:
-    case Command::kWr: {
+    case Command::kWr:
+    case Command::kRda: {
       const Bank& k = banks_[a.bank];
       if (k.state == BankState::kIdle) {
         return reject("bank " + std::to_string(a.bank) + " is idle (no open row)");
@@ -333,7 +337,7 @@ Issued Dimm::issue(Command cmd, const Address& a, Cycle now) {
   issued.address = a;
   issued.cycle = now;
   if (cmd == Command::kNop) return issued;
-  if (cmd == Command::kRd) {
+  if (is_read_command(cmd)) {
     // Data on the bus CL clocks after the READ, one beat per clock.
     issued.data = DataWindow{now + timing_.CL, now + timing_.CL + timing_.BL - 1};
   } else if (cmd == Command::kWr) {
@@ -354,6 +358,14 @@ void Dimm::apply(Command cmd, const Address& a, Cycle now) {
     case Command::kRd:
       ++stats_.banks[a.bank].reads;
       stats_.data_bus_busy_cycles += timing_.BL;
+      break;
+    case Command::kRda:
+      // The row closes where its internal PRECHARGE starts; the bank takes no
+      // other command for it (the table's RDA rows time what follows).
+      ++stats_.banks[a.bank].reads;
+      ++stats_.banks[a.bank].auto_precharges;
+      stats_.data_bus_busy_cycles += timing_.BL;
+      close_row(a.bank, now + timing_.read_to_precharge());
       break;
     case Command::kWr:
       ++stats_.banks[a.bank].writes;

@@ -12,7 +12,7 @@
 //   - earliest()/gate() answer timing only: the first cycle >= now at which
 //     every row of the constraint table allows the command. can_issue() and
 //     violation() add everything else: address range, bank state (ACT needs
-//     an idle bank; RD/WR need the addressed row open; REF needs all banks
+//     an idle bank; RD/WR/RDA need the addressed row open; REF needs all banks
 //     idle), the command bus, overdue refresh and tRAS(max).
 //   - PRE to an idle bank (or PREA with no bank open) is legal, as in the
 //     datasheet's truth table (it acts as a NOP there); the model still times
@@ -99,7 +99,8 @@ struct BankStats {
   std::uint64_t activates = 0;
   std::uint64_t reads = 0;
   std::uint64_t writes = 0;
-  std::uint64_t precharges = 0;  // rows closed, by PRE or PREA
+  std::uint64_t precharges = 0;  // rows closed, by PRE, PREA or RDA
+  std::uint64_t auto_precharges = 0;  // rows closed by RDA (in precharges too)
   Cycle open_cycles = 0;         // cycles with a row open (closed rows only)
 };
 

@@ -25,6 +25,8 @@ std::string_view name(Command c) {
       return "PREA";
     case Command::kRef:
       return "REF";
+    case Command::kRda:
+      return "RDA";
   }
   return "?";
 }
@@ -240,6 +242,28 @@ ConstraintTable::ConstraintTable(const TimingCycles& t) : by_next_(kCommandCount
       {C::kRef, C::kRef, S::kAnyBank, t.tRFC, "tRFC"},
       {C::kRef, C::kPre, S::kAnyBank, t.tRFC, "tRFC"},
       {C::kRef, C::kPrea, S::kAnyBank, t.tRFC, "tRFC"},
+      // READ with auto precharge (Micron 128Mb, "READ with auto precharge";
+      // Concurrent Auto Precharge): a READ whose bank starts precharging
+      // itself where a PRECHARGE after the READ could first go, BL clocks
+      // later, and is idle tRP after that. Its rows are the READ's and that
+      // internal PRECHARGE's, moved by BL: the precharge must meet tRAS
+      // (ACT -> RDA: tRAS - BL) and tWR after a write to the bank. After it
+      // the bank is idle: a column command to it is a state error, so the
+      // data-bus rows after an RDA couple the other banks only.
+      {C::kAct, C::kRda, S::kSameBank, std::max(t.tRCD, t.tRAS - t.read_to_precharge()),
+       "max(tRCD,tRAS-BL)"},
+      {C::kRda, C::kAct, S::kSameBank, t.read_to_precharge() + t.tRP, "BL+tRP"},
+      {C::kRda, C::kPre, S::kSameBank, t.read_to_precharge(), "BL"},
+      {C::kRda, C::kPrea, S::kAnyBank, t.read_to_precharge(), "BL"},
+      {C::kRda, C::kRef, S::kAnyBank, t.read_to_precharge() + t.tRP, "BL+tRP"},
+      {C::kRd, C::kRda, S::kAnyBank, t.column_to_column(), "max(tCCD,BL)"},
+      {C::kRda, C::kRd, S::kOtherBank, t.column_to_column(), "max(tCCD,BL)"},
+      {C::kRda, C::kRda, S::kOtherBank, t.column_to_column(), "max(tCCD,BL)"},
+      {C::kRda, C::kWr, S::kOtherBank, t.read_to_write(), "CL+BL+1"},
+      {C::kWr, C::kRda, S::kSameBank,
+       std::max(t.write_to_read(), t.write_to_precharge() - t.read_to_precharge()),
+       "max(BL-1+tCDL,tWR-1)"},
+      {C::kWr, C::kRda, S::kOtherBank, t.write_to_read(), "BL-1+tCDL"},
   };
   for (std::size_t i = 0; i < rows_.size(); ++i) by_next_[index_of(rows_[i].next)].push_back(i);
   validate();

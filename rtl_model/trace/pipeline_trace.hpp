@@ -38,7 +38,7 @@ TraceOptions parse_window(const std::string& text, const std::string& what);
 
 // dimmD.cmd's values: the sdram::Command enumerators (NOP 0, ACT 1, RD 2,
 // WR 3, PRE 4, PREA 5, REF 6), written into the VCD's $comment.
-inline constexpr const char* kCommandCodes = "cmd: 0 NOP, 1 ACT, 2 RD, 3 WR, 4 PRE, 5 PREA, 6 REF";
+inline constexpr const char* kCommandCodes = "cmd: 0 NOP, 1 ACT, 2 RD, 3 WR, 4 PRE, 5 PREA, 6 REF, 7 RDA";
 
 class PipelineTrace {
  public:

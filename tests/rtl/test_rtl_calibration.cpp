@@ -57,17 +57,18 @@ TEST(RtlCalibration, Vizard2Frames) {
 
 // The 10.5 ns goal (issue 4, docs/performance.md §7) without ERT, in
 // perspective and along each axis, with the organisation that meets it: row-hit
-// issue over 256 rays in flight taken in tiles of 16 x 16, bricks whose
-// neighbours lie in other banks, look-ahead activation. Opt-in like the
-// frames above: VOXCAST_CALIBRATION=goal (about 3 min of CPU).
+// issue over 32 rays in flight taken in tiles of 4 x 4, bricks whose
+// neighbours lie in other banks, look-ahead activation, READ with auto
+// precharge. Opt-in like the frames above: VOXCAST_CALIBRATION=goal (about
+// 2 min of CPU).
 TEST(RtlCalibration, RowHitIssueMeetsTheGoal) {
   const char* env = std::getenv("VOXCAST_CALIBRATION");
   if (env == nullptr || (std::string(env) != "1" && std::string(env) != "goal"))
     GTEST_SKIP() << "set VOXCAST_CALIBRATION=goal to run the 256^3 goal frames";
   const rtl::RtlConfig config = rtl::rtl_config(
-      ref::default_scene({"rtl.issue=row-hit", "rtl.issue_bypass_limit=4096", "rtl.ray_slots=256",
-                          "rtl.traversal=tiles", "rtl.tile=16", "rtl.layout=bricked-swizzled",
-                          "rtl.scheduler=lookahead"})
+      ref::default_scene({"rtl.issue=row-hit", "rtl.issue_bypass_limit=4096", "rtl.ray_slots=32",
+                          "rtl.traversal=tiles", "rtl.tile=4", "rtl.layout=bricked-swizzled",
+                          "rtl.scheduler=lookahead", "rtl.auto_precharge=true"})
           .rtl);
   for (const auto& point : rtl::bench::calibration_points()) {
     if (point.name.rfind("baseline-256-", 0) != 0) continue;

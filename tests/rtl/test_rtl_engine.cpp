@@ -146,6 +146,15 @@ TEST(RtlEngine, EveryOrganisationGivesTheSameImage) {
          c.mapping.name = "bricked-swizzled";
          c.scheduler = "lookahead";
        }},
+      {"auto precharge, in-order (reference controller)",
+       [](rtl::RtlConfig& c) { c.pipeline.controller.auto_precharge = true; }},
+      {"auto precharge, lookahead, bricked-swizzled, row-hit",
+       [](rtl::RtlConfig& c) {
+         c.pipeline.controller.auto_precharge = true;
+         c.scheduler = "lookahead";
+         c.mapping.name = "bricked-swizzled";
+         c.pipeline.issue = rtl::pipeline::IssuePolicy::kRowHit;
+       }},
       {"row-hit, 1 ray slot, tiny buffers",
        [](rtl::RtlConfig& c) {
          c.pipeline.issue = rtl::pipeline::IssuePolicy::kRowHit;

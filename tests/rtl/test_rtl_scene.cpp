@@ -54,7 +54,7 @@ TEST(RtlScene, EveryKeyReachesTheConfiguration) {
        "rtl.refresh_postpone=2", "rtl.sdram=pc100-cl3", "rtl.layout=bricked",
        "rtl.brick=[4, 2, 8]", "rtl.traversal=tiles", "rtl.tile=16", "rtl.ray_slots=32",
 "rtl.issue_burst=3", "rtl.issue_bypass_limit=5", "rtl.sample_buffer=128", "rtl.queue_depth=12",
-       "rtl.return_depth=6", "rtl.refresh=eager"});
+       "rtl.return_depth=6", "rtl.refresh=eager", "rtl.auto_precharge=true"});
   const rtl::RtlConfig c = rtl::rtl_config(s.rtl);
   EXPECT_EQ(c.scheduler, "fr-fcfs");
   EXPECT_EQ(c.pipeline.scheduler_params.reorder_window, 4);
@@ -72,6 +72,7 @@ TEST(RtlScene, EveryKeyReachesTheConfiguration) {
   EXPECT_EQ(c.pipeline.sample_buffer, 128);
   EXPECT_EQ(c.pipeline.controller.queue_depth, 12u);
   EXPECT_EQ(c.pipeline.controller.return_depth, 6u);
+  EXPECT_TRUE(c.pipeline.controller.auto_precharge);
   EXPECT_EQ(c.refresh, "eager");
   // And back through the TOML writer.
   const ref::Scene t = ref::parse_scene(ref::scene_to_toml(s), "round trip", ".");

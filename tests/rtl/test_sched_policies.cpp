@@ -228,6 +228,49 @@ TEST(LookAhead, HidesPrechargeAndActivateOnAlternatingBanks) {
   }
 }
 
+// The same stream with the adaptive page policy (ControllerConfig::
+// auto_precharge): the last READ of each segment finds no other request for
+// its row in the queue and goes as READ with auto precharge, so each row
+// change costs the ACT alone: one command-bus cycle with look-ahead (instead
+// of two), tRCD in order (instead of tRP + tRCD: the bank closed itself under
+// the other bank's segment).
+TEST(AutoPrecharge, ARowChangeCostsTheActivateAlone) {
+  const std::map<std::string, TimingNs> grades{{"pc100-cl2", presets::pc100_cl2()},
+                                               {"pc100-cl3", presets::pc100_cl3()}};
+  for (const auto& [grade, timing] : grades) {
+    DimmConfig dimm;
+    dimm.timing = timing;
+    const Cycle S = 16, N = 20;
+    std::vector<Address> a;
+    for (Cycle k = 0; k < N; ++k)
+      for (Cycle i = 0; i < S; ++i)
+        a.push_back({static_cast<std::uint32_t>(k % 2), static_cast<std::uint32_t>(k),
+                     static_cast<std::uint32_t>(i)});
+    const TimingCycles t = Dimm(dimm).timing();
+    const std::map<std::string, Cycle> expected{
+        {"in-order", t.tRCD + (N * S - 1) + (N - 1) * t.tRCD},
+        {"lookahead", t.tRCD + (N * S - 1) + 1 + (N - 2) * 1}};
+    for (const auto& [name, last] : expected) {
+      SCOPED_TRACE(grade + " " + name);
+      Controller ctl = make(name, {}, {.auto_precharge = true}, dimm);
+      Cycle now = 0;
+      const std::vector<Completion> done = serve(ctl, a, now);
+      ASSERT_EQ(done.size(), a.size());
+      ASSERT_LT(now, t.tREFI);
+      for (std::size_t i = 0; i < done.size(); ++i) EXPECT_EQ(done[i].request.id, i);
+      EXPECT_EQ(done.back().column_command, last);
+      // One RDA per segment (its last READ), no PRE at all.
+      EXPECT_EQ(ctl.stats().auto_precharges, static_cast<std::uint64_t>(N));
+      const BankStats b = ctl.dimm().stats().total();
+      EXPECT_EQ(b.auto_precharges, static_cast<std::uint64_t>(N));
+      EXPECT_EQ(b.precharges, static_cast<std::uint64_t>(N));
+      EXPECT_EQ(b.activates, static_cast<std::uint64_t>(N));
+      EXPECT_EQ(ctl.stats().command_cycles, static_cast<Cycle>(N * S + N));
+      EXPECT_EQ(ctl.stats().row_conflicts, 0u);
+    }
+  }
+}
+
 TEST(SchedPolicies, RegistryRejectsUnknownNamesAndBadParameters) {
   EXPECT_THROW(sched::make_scheduler("fifo"), voxcast::Error);
   try {

@@ -86,8 +86,7 @@ std::vector<Banks> banks_for(const Constraint& c) {
 void check_constraint(const DimmConfig& cfg, const Constraint& c, Banks b) {
   Dimm d(cfg);
   std::set<std::uint32_t> open;
-  if (c.prev == Command::kRd || c.prev == Command::kWr || c.prev == Command::kPre ||
-      c.prev == Command::kPrea) {
+  if (is_column_command(c.prev) || c.prev == Command::kPre || c.prev == Command::kPrea) {
     open.insert(b.prev);
   }
   const bool prev_opens_it = c.prev == Command::kAct && b.next == b.prev;
@@ -134,7 +133,7 @@ TEST(DimmConstraints, EveryRowIllegalOneCycleEarlyAndLegalOnTime) {
       }
     }
   }
-  EXPECT_EQ(checked, 3u * 4u * (22u + 14u));  // 14 any-bank rows run with both bank pairings
+  EXPECT_EQ(checked, 3u * 4u * (33u + 17u));  // 17 any-bank rows run with both bank pairings
 }
 
 // ---- (b) Command sequences ---------------------------------------------------------------
@@ -196,6 +195,30 @@ TEST(DimmSequences, RowConflictIsTrpPlusTrcdPlusCl) {
       EXPECT_EQ(d.row_outcome(Address{0, 5, 0}), RowOutcome::kMiss);
     }
   }
+}
+
+// READ with auto precharge: data as a READ's, the bank idle right after it
+// (a column command to the row is a state error, an ACT waits BL + tRP), the
+// row's open time ending where the internal PRECHARGE starts.
+TEST(DimmSequences, ReadWithAutoPrechargeClosesTheRowItself) {
+  Dimm d(DimmConfig{});
+  const TimingCycles& t = d.timing();
+  d.issue(Command::kAct, at(1), 10);
+  const Cycle rda = 10 + std::max(t.tRCD, t.tRAS - t.BL);
+  EXPECT_FALSE(d.can_issue(Command::kRda, at(1), rda - 1));
+  const Issued i = d.issue(Command::kRda, at(1), rda);
+  ASSERT_TRUE(i.data.has_value());
+  EXPECT_EQ(i.data->first, rda + t.CL);
+  EXPECT_EQ(i.data->last, rda + t.CL + t.BL - 1);
+  EXPECT_EQ(d.bank(1).state, BankState::kIdle);
+  expect_error([&] { d.issue(Command::kRd, at(1), rda + 1); }, {"RD to bank 1", "is idle"});
+  EXPECT_EQ(d.earliest(Command::kAct, 1, rda + 1), rda + t.BL + t.tRP);
+  const BankStats& b = d.stats().banks[1];
+  EXPECT_EQ(b.reads, 1u);
+  EXPECT_EQ(b.auto_precharges, 1u);
+  EXPECT_EQ(b.precharges, 1u);
+  EXPECT_EQ(b.open_cycles, rda + t.BL - 10);
+  d.issue(Command::kAct, at(1), rda + t.BL + t.tRP);
 }
 
 TEST(DimmSequences, NextCommandIsTheRequestsPrerequisite) {

@@ -169,9 +169,14 @@ TEST(ConstraintTable, EveryRowIsItsNamedFormula) {
           {"max(tCCD,BL)", std::max(t.tCCD, t.BL)},
           {"CL+BL+1", t.CL + t.BL + 1},
           {"BL-1+tCDL", t.BL - 1 + t.tCDL},
+          // READ with auto precharge: the READ's rows and its internal
+          // PRECHARGE's, BL clocks after it.
+          {"max(tRCD,tRAS-BL)", std::max(t.tRCD, t.tRAS - t.BL)},
+          {"BL+tRP", t.BL + t.tRP},
+          {"max(BL-1+tCDL,tWR-1)", std::max(t.BL - 1 + t.tCDL, t.tWR - 1)},
       };
       const ConstraintTable table(t);
-      EXPECT_EQ(table.rows().size(), 22u);
+      EXPECT_EQ(table.rows().size(), 33u);
       for (const Constraint& c : table.rows()) {
         const auto it = formula.find(std::string(c.parameter));
         ASSERT_NE(it, formula.end()) << c;
