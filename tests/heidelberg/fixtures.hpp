@@ -29,4 +29,18 @@ inline ref::Scene heidelberg_scene(int W, int D, int H) {
   return s;
 }
 
+// The view every VIRIM unit is checked on beyond the aligned cases: turned
+// 37 degrees about an oblique axis, zoomed, translated, in perspective, over
+// a 24 x 22 x 20 view cube of oblique_volume().
+inline ref::Scene oblique_heidelberg_scene() {
+  ref::Scene s = heidelberg_scene(24, 22, 20);
+  s.heidelberg.axis = {0.3, -0.5, 1.0};
+  s.heidelberg.angle_deg = 37.0;
+  s.heidelberg.zoom = 1.3;
+  s.heidelberg.translation = {1.25, -0.5, 2.0};
+  s.heidelberg.perspective = 40.0;
+  return s;
+}
+inline ref::Volume oblique_volume() { return random_volume(20, 18, 16, 7); }
+
 }  // namespace voxcast::test

@@ -27,14 +27,9 @@ using V = hls::virim::VirimParams<HP>;
 
 // An oblique, perspective, zoomed, translated view of a random volume.
 struct Oblique {
-  ref::Volume volume = random_volume(20, 18, 16, 7);
+  ref::Volume volume = oblique_volume();
   ref::Scene scene = [] {
-    ref::Scene s = heidelberg_scene(24, 22, 20);
-    s.heidelberg.axis = {0.3, -0.5, 1.0};
-    s.heidelberg.angle_deg = 37.0;
-    s.heidelberg.zoom = 1.3;
-    s.heidelberg.translation = {1.25, -0.5, 2.0};
-    s.heidelberg.perspective = 40.0;
+    ref::Scene s = oblique_heidelberg_scene();
     s.heidelberg.shininess = 11;
     return s;
   }();

@@ -55,15 +55,7 @@ VirimRtlConfig fast_dsps(VirimRtlConfig c = {}) {
   return c;
 }
 
-Case oblique() {
-  ref::Scene s = heidelberg_scene(24, 22, 20);
-  s.heidelberg.axis = {0.3, -0.5, 1.0};
-  s.heidelberg.angle_deg = 37.0;
-  s.heidelberg.zoom = 1.3;
-  s.heidelberg.translation = {1.25, -0.5, 2.0};
-  s.heidelberg.perspective = 40.0;
-  return Case(random_volume(20, 18, 16, 7), s);
-}
+Case oblique() { return Case(oblique_volume(), oblique_heidelberg_scene()); }
 
 // The view cube equals the volume, unrotated, unzoomed: output voxel (i, j, k)
 // reads the neighbourhood with lower corner (i, j, k) exactly.
