@@ -56,7 +56,7 @@ RtlConfig rtl_config(const ref::RtlDesc& d) {
   p.tile = d.tile;
   p.ray_slots = d.ray_slots;
   p.issue_burst = d.issue_burst;
-  p.issue = pipeline::parse_issue_policy(known("issue", d.issue, {"oldest", "row-hit"}));
+  p.issue = pipeline::parse_issue_policy(known("issue", d.issue, pipeline::issue_policy_names()));
   p.issue_bypass_limit = d.issue_bypass_limit;
   p.sample_buffer = d.sample_buffer;
   if (d.queue_depth < 1 || d.return_depth < 1)

@@ -17,9 +17,13 @@ Traversal parse_traversal(const std::string& name) {
 
 const char* to_string(IssuePolicy p) { return p == IssuePolicy::kOldest ? "oldest" : "row-hit"; }
 
+std::vector<std::string> issue_policy_names() {
+  return {to_string(IssuePolicy::kOldest), to_string(IssuePolicy::kRowHit)};
+}
+
 IssuePolicy parse_issue_policy(const std::string& name) {
-  if (name == "oldest") return IssuePolicy::kOldest;
-  if (name == "row-hit") return IssuePolicy::kRowHit;
+  for (IssuePolicy p : {IssuePolicy::kOldest, IssuePolicy::kRowHit})
+    if (name == to_string(p)) return p;
   throw Error("unknown issue policy '" + name + "' (known: oldest, row-hit)");
 }
 

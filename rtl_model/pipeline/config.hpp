@@ -44,7 +44,9 @@ enum class IssuePolicy : std::uint8_t {
 };
 
 const char* to_string(IssuePolicy p);
-// "oldest" | "row-hit"; throws voxcast::Error otherwise.
+// {"oldest", "row-hit"}: the names parse_issue_policy accepts.
+std::vector<std::string> issue_policy_names();
+// One of issue_policy_names(); throws voxcast::Error otherwise.
 IssuePolicy parse_issue_policy(const std::string& name);
 
 // The order in which the ray setup unit takes the pixels: (x, y) pairs.

@@ -507,11 +507,12 @@ class RayPipeline {
       ++(next_pixel_ == order_.size() ? stats_.stalls.issue_idle : stats_.stalls.issue_no_ray);
       return;
     }
-    const std::size_t j = pick_ray(now);
-    if (j == kNone) {
+    const Pick pick = pick_ray(now);
+    if (pick.place == kNone) {
       ++stats_.stalls.issue_no_ray;
       return;
     }
+    const std::size_t j = pick.place;
     const int i = issue_q_.at(j);
     Slot& s = slots_[static_cast<std::size_t>(i)];
     if (leap_ && try_leap(now, j, s)) return;
@@ -524,7 +525,7 @@ class RayPipeline {
         ++stats_.stalls.issue_memory_full;
         return;
       }
-    if (config_.issue == IssuePolicy::kRowHit) count_bypass(j, now);
+    if (config_.issue == IssuePolicy::kRowHit) count_bypass(j != pick.oldest);
     // The sample's bank access (hls address generator), its neighbourhood's
     // four DIMM words, one request to each DIMM.
     know_next_sample(s);
@@ -583,12 +584,18 @@ class RayPipeline {
       if (slots_[static_cast<std::size_t>(issue_q_.at(k))].finished) retire(k);
   }
 
-  // The place in the issue queue of the ray to issue from at `now`, or kNone
-  // when that ray (oldest) or every ray (row-hit) is still in set-up or
-  // waiting for a leap.
-  std::size_t pick_ray(Cycle now) {
-    if (config_.issue == IssuePolicy::kOldest)
-      return slots_[static_cast<std::size_t>(issue_q_.front())].ready_at > now ? kNone : 0;
+  // The place in the issue queue of the ray to issue from at `now`, and of
+  // the oldest ready ray; kNone when that ray (oldest) or every ray (row-hit)
+  // is still in set-up or waiting for a leap.
+  struct Pick {
+    std::size_t place = kNone;
+    std::size_t oldest = kNone;
+  };
+  Pick pick_ray(Cycle now) {
+    if (config_.issue == IssuePolicy::kOldest) {
+      if (slots_[static_cast<std::size_t>(issue_q_.front())].ready_at > now) return {};
+      return {0, 0};
+    }
     std::size_t oldest = kNone, best = kNone;
     int best_hits = 0;
     for (std::size_t k = 0; k < issue_q_.size(); ++k) {
@@ -596,7 +603,7 @@ class RayPipeline {
       if (s.ready_at > now) continue;
       if (oldest == kNone) {
         oldest = k;
-        if (bypass_ >= config_.issue_bypass_limit) return oldest;
+        if (bypass_ >= config_.issue_bypass_limit) return {oldest, oldest};
       }
       const int hits = row_hits(s);
       if (hits > best_hits) {
@@ -605,7 +612,7 @@ class RayPipeline {
         if (hits == layout::kDimms) break;
       }
     }
-    return best == kNone ? oldest : best;
+    return {best == kNone ? oldest : best, oldest};
   }
 
   // How many of the ray's next sample's four DIMM words lie in the row last
@@ -619,16 +626,15 @@ class RayPipeline {
   }
 
   // Row-hit issue: a sample from any ray but the oldest ready one bypasses it.
-  void count_bypass(std::size_t j, Cycle now) {
-    for (std::size_t k = 0; k < j; ++k)
-      if (slots_[static_cast<std::size_t>(issue_q_.at(k))].ready_at <= now) {
-        ++bypass_;
-        ++stats_.issue_bypasses;
-        stats_.issue_longest_bypass =
-            std::max(stats_.issue_longest_bypass, static_cast<std::uint64_t>(bypass_));
-        return;
-      }
-    bypass_ = 0;
+  void count_bypass(bool bypassed) {
+    if (!bypassed) {
+      bypass_ = 0;
+      return;
+    }
+    ++bypass_;
+    ++stats_.issue_bypasses;
+    stats_.issue_longest_bypass =
+        std::max(stats_.issue_longest_bypass, static_cast<std::uint64_t>(bypass_));
   }
 
   void know_next_sample(Slot& s) {

@@ -33,13 +33,14 @@ double ControllerStats::mean_latency() const {
 }
 
 std::ostream& operator<<(std::ostream& os, const ControllerStats& s) {
-  return os << s.cycles << " cycles: " << s.requests << " requests (" << s.reads << " reads, "
+  os << s.cycles << " cycles: " << s.requests << " requests (" << s.reads << " reads, "
             << s.writes << " writes), rows " << s.row_hits << " hit / " << s.row_misses
             << " miss / " << s.row_conflicts << " conflict, " << s.completed << " completed, "
             << s.bytes << " bytes, mean latency " << s.mean_latency() << " (max " << s.latency_max
             << ") cycles, command bus busy " << s.command_cycles << " cycles, refreshing "
-            << s.refresh_cycles << " cycles" << (s.auto_precharges > 0 ? ", " : "")
-            << (s.auto_precharges > 0 ? std::to_string(s.auto_precharges) + " reads with auto precharge" : "");
+            << s.refresh_cycles << " cycles";
+  if (s.auto_precharges > 0) os << ", " << s.auto_precharges << " reads with auto precharge";
+  return os;
 }
 
 // ---- Controller --------------------------------------------------------------------------

@@ -35,6 +35,7 @@ TEST(RtlScene, KnownNamesAreTheRegistries) {
   EXPECT_EQ(ref::rtl_choices("scheduler"), rtl::sched::scheduler_names());
   EXPECT_EQ(ref::rtl_choices("refresh"), rtl::sched::refresh_policy_names());
   EXPECT_EQ(ref::rtl_choices("layout"), rtl::layout::mapping_names());
+  EXPECT_EQ(ref::rtl_choices("issue"), rtl::pipeline::issue_policy_names());
   for (const std::string& t : ref::rtl_choices("traversal"))
     EXPECT_EQ(rtl::pipeline::to_string(rtl::pipeline::parse_traversal(t)), t);
   ref::RtlDesc d;

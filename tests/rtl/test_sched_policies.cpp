@@ -196,18 +196,25 @@ TEST(FrFcfs, TheOldestIsBypassedExactlyStarvationLimitTimes) {
 // ACT of each later segment; tRP and tRCD elapse under the stream). S is long
 // enough that tRAS, tRC and tRRD never bind, and the run ends before the
 // first refresh falls due.
+const std::map<std::string, TimingNs> kPc100Grades{{"pc100-cl2", presets::pc100_cl2()},
+                                                   {"pc100-cl3", presets::pc100_cl3()}};
+
+// N segments of S reads each, segment k to row k of bank k mod 2.
+std::vector<Address> alternating_bank_segments(Cycle S, Cycle N) {
+  std::vector<Address> a;
+  for (Cycle k = 0; k < N; ++k)
+    for (Cycle i = 0; i < S; ++i)
+      a.push_back({static_cast<std::uint32_t>(k % 2), static_cast<std::uint32_t>(k),
+                   static_cast<std::uint32_t>(i)});
+  return a;
+}
+
 TEST(LookAhead, HidesPrechargeAndActivateOnAlternatingBanks) {
-  const std::map<std::string, TimingNs> grades{{"pc100-cl2", presets::pc100_cl2()},
-                                               {"pc100-cl3", presets::pc100_cl3()}};
-  for (const auto& [grade, timing] : grades) {
+  for (const auto& [grade, timing] : kPc100Grades) {
     DimmConfig dimm;
     dimm.timing = timing;
     const Cycle S = 16, N = 20;
-    std::vector<Address> a;
-    for (Cycle k = 0; k < N; ++k)
-      for (Cycle i = 0; i < S; ++i)
-        a.push_back({static_cast<std::uint32_t>(k % 2), static_cast<std::uint32_t>(k),
-                     static_cast<std::uint32_t>(i)});
+    const std::vector<Address> a = alternating_bank_segments(S, N);
     std::map<std::string, Cycle> last_rd;
     for (const char* name : {"in-order", "lookahead"}) {
       SCOPED_TRACE(grade + " " + name);
@@ -235,17 +242,11 @@ TEST(LookAhead, HidesPrechargeAndActivateOnAlternatingBanks) {
 // of two), tRCD in order (instead of tRP + tRCD: the bank closed itself under
 // the other bank's segment).
 TEST(AutoPrecharge, ARowChangeCostsTheActivateAlone) {
-  const std::map<std::string, TimingNs> grades{{"pc100-cl2", presets::pc100_cl2()},
-                                               {"pc100-cl3", presets::pc100_cl3()}};
-  for (const auto& [grade, timing] : grades) {
+  for (const auto& [grade, timing] : kPc100Grades) {
     DimmConfig dimm;
     dimm.timing = timing;
     const Cycle S = 16, N = 20;
-    std::vector<Address> a;
-    for (Cycle k = 0; k < N; ++k)
-      for (Cycle i = 0; i < S; ++i)
-        a.push_back({static_cast<std::uint32_t>(k % 2), static_cast<std::uint32_t>(k),
-                     static_cast<std::uint32_t>(i)});
+    const std::vector<Address> a = alternating_bank_segments(S, N);
     const TimingCycles t = Dimm(dimm).timing();
     const std::map<std::string, Cycle> expected{
         {"in-order", t.tRCD + (N * S - 1) + (N - 1) * t.tRCD},
