@@ -8,6 +8,7 @@
 #include "cosim/commands.hpp"
 #include "cosim/engines.hpp"
 #include "cosim/heidelberg.hpp"
+#include "cosim/stopwatch.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 #include "refmodel/render/heidelberg/heidelberg.hpp"
@@ -18,16 +19,15 @@
 namespace voxcast::cosim {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 // Median and minimum wall time of `repeats` runs of `frame` after one warm-up.
 void time_frames(const std::function<std::uint64_t()>& frame, int repeats, BenchResult& r) {
   r.samples = frame();  // warm-up (caches, page faults); also the sample count
   std::vector<double> t;
   for (int i = 0; i < repeats; ++i) {
-    const auto t0 = Clock::now();
+    const auto t0 = StopwatchClock::now();
     frame();
-    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    t.push_back(seconds_since(t0));
   }
   std::sort(t.begin(), t.end());
   r.median_seconds = t[t.size() / 2];

@@ -16,6 +16,7 @@
 #include "cosim/heidelberg.hpp"
 #include "cosim/image_io.hpp"
 #include "cosim/warnings.hpp"
+#include "cosim/stopwatch.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "cosim/rtl_json.hpp"
 #include "rtl_model/engine.hpp"
@@ -27,12 +28,6 @@
 
 namespace voxcast::cosim {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 std::string with_suffix(const std::string& path, const std::string& suffix) {
   const std::filesystem::path p(path);
@@ -139,7 +134,7 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   if (scene.algorithm == ref::Algorithm::Heidelberg) return run_render_heidelberg(scene, options);
   RenderSummary s;
   for (const std::string& out : options.outputs) check_image_path(out);
-  const auto t_load = Clock::now();
+  const auto t_load = StopwatchClock::now();
   const SceneVolume sv = load_scene_volume(scene);
   const ref::Volume& volume = sv.volume;
   const ref::GradientField& gradients = sv.gradients;
@@ -176,7 +171,7 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
     const std::filesystem::path dir = std::filesystem::path(options.vcd_path).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir);
   }
-  const auto t_render = Clock::now();
+  const auto t_render = StopwatchClock::now();
   for (const View& view : views_of(scene)) {
     ref::FrameStats fs;
     std::ofstream vcd;

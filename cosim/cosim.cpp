@@ -14,6 +14,7 @@
 #include "cosim/heidelberg.hpp"
 #include "cosim/image_io.hpp"
 #include "cosim/warnings.hpp"
+#include "cosim/stopwatch.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/scene/scene_toml.hpp"
@@ -24,11 +25,6 @@
 
 namespace voxcast::cosim {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Signed difference hls - float, per channel, in [−1, 1] of full scale.
 ref::Image difference(const ref::Image& a, const ref::Image& b) {
@@ -94,18 +90,18 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   const int threads = scene.render.threads;
 
   ref::FrameStats fs_float, fs_hls;
-  auto t0 = Clock::now();
+  auto t0 = StopwatchClock::now();
   const ref::Image truth = ref::render_image(inputs, threads, &fs_float);
   r.seconds_float = seconds_since(t0);
 
   const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, inputs);
   const bittrue::VoxelMemory memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
-  t0 = Clock::now();
+  t0 = StopwatchClock::now();
   const ref::QuantImage bt = bittrue::bt_render_image(setup, memory, threads);
   r.seconds_bittrue = seconds_since(t0);
   ref::QuantImage hls = bt;
   if (r.hls_ran) {
-    t0 = Clock::now();
+    t0 = StopwatchClock::now();
     hls = hls_render_image(setup, memory, threads, &fs_hls);
     r.seconds_hls = seconds_since(t0);
   }
@@ -116,7 +112,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   // The cycle model: the same pixels as hls, and how many cycles they take.
   rtl::RtlResult rtl_result;
   if (r.hls_ran) {
-    t0 = Clock::now();
+    t0 = StopwatchClock::now();
     rtl_result = rtl::rtl_render(setup, memory, rtl::rtl_config(scene.rtl));
     r.seconds_rtl = seconds_since(t0);
     r.rtl_exact = rtl_result.image.pixels == hls.pixels;
@@ -146,7 +142,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
     r.written.push_back(m.reproducer);
   }
   r.accuracy = measure_accuracy(hls, truth);
-  t0 = Clock::now();
+  t0 = StopwatchClock::now();
   const ref::Image high = render_truth(scene, sv, truth_settings);
   r.seconds_truth = seconds_since(t0);
   r.truth_accuracy = measure_accuracy(hls, high);

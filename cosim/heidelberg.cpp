@@ -13,6 +13,7 @@
 #include "cosim/engines.hpp"
 #include "cosim/image_io.hpp"
 #include "cosim/metrics.hpp"
+#include "cosim/stopwatch.hpp"
 #include "hls/virim/host.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
@@ -22,11 +23,6 @@
 
 namespace voxcast::cosim {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 template <HeidelbergProfile HP>
 ref::QuantImage render_hls(const bittrue::VirimSetup& s, const bittrue::VirimMemory& m,
@@ -153,7 +149,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
                 "(render.algorithm = \"heidelberg\") writes no trace");
   RenderSummary s;
   for (const std::string& out : options.outputs) check_image_path(out);
-  const auto t_load = Clock::now();
+  const auto t_load = StopwatchClock::now();
   const SceneVolume sv = load_scene_volume(scene);
   s.load_seconds = seconds_since(t_load);
   s.volume_source = sv.volume.source;
@@ -169,7 +165,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
     if (!dir.empty()) std::filesystem::create_directories(dir);
   }
   const std::vector<double> eyes = ref::heidelberg::eye_offsets(scene.heidelberg);
-  const auto t_render = Clock::now();
+  const auto t_render = StopwatchClock::now();
   rtl::virim::VirimRtlStats rtl_stats;  // the last eye's
   for (std::size_t e = 0; e < eyes.size(); ++e) {
     ref::Image img;
@@ -232,25 +228,25 @@ CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out
   const int threads = scene.render.threads;
   const double eye = ref::heidelberg::eye_offsets(scene.heidelberg).front();
 
-  auto t0 = Clock::now();
+  auto t0 = StopwatchClock::now();
   const ref::Image truth = ref::heidelberg::render(scene, sv.volume, eye, threads);
   r.seconds_float = seconds_since(t0);
   const bittrue::VirimSetup setup = bittrue::make_virim_setup(profile, scene, sv.volume, eye);
   const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
-  t0 = Clock::now();
+  t0 = StopwatchClock::now();
   const ref::QuantImage bt = bittrue::bt_render_heidelberg(setup, memory, threads);
   r.seconds_bittrue = seconds_since(t0);
   ref::QuantImage hls = bt;
   hls::virim::MemoryStats ms;
   if (r.hls_ran) {
-    t0 = Clock::now();
+    t0 = StopwatchClock::now();
     hls = hls_render_heidelberg(setup, memory, threads, &ms);
     r.seconds_hls = seconds_since(t0);
   }
   // The cycle model: the hls kernels' pixels, and the card's cycles.
   rtl::virim::VirimRtlResult rtl_result;
   if (r.hls_ran) {
-    t0 = Clock::now();
+    t0 = StopwatchClock::now();
     rtl_result = run_rtl(scene, setup, memory);
     r.seconds_rtl = seconds_since(t0);
     r.rtl_exact = rtl_result.image.pixels == hls.pixels;

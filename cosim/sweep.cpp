@@ -22,6 +22,7 @@
 #include "cosim/report.hpp"
 #include "cosim/sweep_plot.hpp"
 #include "cosim/truth.hpp"
+#include "cosim/stopwatch.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 #include "refmodel/precision/presets.hpp"
@@ -33,12 +34,7 @@
 namespace voxcast::cosim::sweep {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Kind = Column::Kind;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // --- Column groups ---------------------------------------------------------------
 
@@ -143,7 +139,7 @@ std::size_t measured_columns() {
 }
 
 PointOutcome run_point(const Plan& plan, std::size_t index, int threads, Caches& caches) {
-  const auto t0 = Clock::now();
+  const auto t0 = StopwatchClock::now();
   PointOutcome out;
   out.row.index = index;
   for (const std::string& v : plan.values(index)) out.row.cells.push_back(Cell::txt(v));
@@ -196,7 +192,7 @@ std::string clock_text(double s) {
 class Progress {
  public:
   Progress(std::size_t total, bool enabled)
-      : total_(total), enabled_(enabled), tty_(isatty(STDERR_FILENO) != 0), t0_(Clock::now()) {}
+      : total_(total), enabled_(enabled), tty_(isatty(STDERR_FILENO) != 0), t0_(StopwatchClock::now()) {}
   void point_done() {
     if (!enabled_) return;
     const std::lock_guard lock(mutex_);
@@ -216,7 +212,7 @@ class Progress {
  private:
   std::size_t total_, done_ = 0;
   bool enabled_, tty_;
-  Clock::time_point t0_;
+  StopwatchClock::time_point t0_;
   std::mutex mutex_;
 };
 
@@ -329,7 +325,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
     throw Error(std::string("sweep: --part: ") + e.what());
   }
   std::filesystem::create_directories(o.out_dir);
-  const auto t0 = Clock::now();
+  const auto t0 = StopwatchClock::now();
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < plan.size(); ++i)
     if (o.shard.owns(i)) mine.push_back(i);
@@ -382,7 +378,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
 SweepSummary run_sweep_merge(const std::vector<std::string>& dirs, const std::string& out_dir,
                              bool plots) {
   if (dirs.empty()) throw Error("sweep-merge: give the output folders of the shards");
-  const auto t0 = Clock::now();
+  const auto t0 = StopwatchClock::now();
   std::vector<Table> shards;
   std::vector<std::string> origins;
   for (const std::string& d : dirs) {

@@ -55,7 +55,6 @@ namespace fs = std::filesystem;
 constexpr double kUnevenTolerance = 0.01;  // relative deviation of a slice gap from the median
 constexpr double kSamePositionMm = 1e-3;   // two slices closer than this are duplicates
 constexpr double kOrientationTolerance = 1e-4;
-constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
 
 struct Slice {
   std::string name;  // file name, for messages
@@ -474,7 +473,7 @@ void read_geometry(const gdcm::DataSet& ds, Decoded& d) {
 }
 
 // Decodes the pixels only when the header makes that safe and useful: one
-// frame of at most kMaxVoxels pixels, and native pixel data that hold them
+// frame of at most kMaxLoadVoxels pixels, and native pixel data that hold them
 // (GDCM's buffer has the size the header promises; a huge Rows x Columns
 // would be allocated whole). The parent rejects the other cases by name.
 void read_pixels(const gdcm::Image& image, const gdcm::DataSet& ds, Decoded& d) {
@@ -483,7 +482,7 @@ void read_pixels(const gdcm::Image& image, const gdcm::DataSet& ds, Decoded& d) 
   const std::uint64_t count = std::uint64_t{d.columns} * d.rows;
   const std::uint64_t bytes = d.bits_allocated == 8 ? 1 : 2;
   if (d.frames != 1 || d.samples_per_pixel != 1 || d.scalar == 0 || count == 0 ||
-      count > kMaxVoxels)
+      count > kMaxLoadVoxels)
     return;
   if (d.native_length >= 0 && static_cast<std::uint64_t>(d.native_length) < count * bytes) return;
   d.pixels.resize(image.GetBufferLength());
@@ -591,7 +590,7 @@ void check_format(const Decoded& d, const std::string& where) {
     throw Error(where + ": pixel type " + d.scalar_name +
                 " is not supported (8 or 16 bits allocated)");
   if (d.columns < 1 || d.rows < 1) throw Error(where + ": empty image");
-  if (std::uint64_t{d.columns} * d.rows > kMaxVoxels)
+  if (std::uint64_t{d.columns} * d.rows > kMaxLoadVoxels)
     throw Error(where + ": " + std::to_string(d.columns) + "x" + std::to_string(d.rows) +
                 " pixels, more than the limit of 2^31 voxels");
   if (!d.has_position)
@@ -821,7 +820,7 @@ Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds pa
                 num(first.spacing_x) + " is not usable");
   const std::uint64_t voxels = static_cast<std::uint64_t>(first.columns) *
                                static_cast<std::uint64_t>(first.rows) * slices.size();
-  if (voxels > kMaxVoxels)
+  if (voxels > kMaxLoadVoxels)
     throw Error(folder + ": " + std::to_string(voxels) + " voxels, more than the limit of 2^31");
 
   // Step 3: order along the slice normal; gaps must be even, positions distinct.

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdint>
 #include <string>
 
 #include "refmodel/volume/volume.hpp"
@@ -14,6 +15,10 @@
 namespace voxcast::ref {
 
 enum class RawType { U8, U16, I16 };
+
+// The largest volume any loader accepts: 2^31 voxels (a larger header is
+// refused with an Error before anything is allocated).
+inline constexpr std::uint64_t kMaxLoadVoxels = std::uint64_t{1} << 31;
 
 struct RawSpec {
   std::array<int, 3> dims{0, 0, 0};

@@ -25,7 +25,6 @@
 namespace voxcast::ref {
 namespace {
 
-constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
 constexpr std::uint32_t kMaxStored16 = 0xFFFF;
 
 struct HeaderFree {
@@ -90,7 +89,7 @@ void check_header(const std::string& path, const nifti_1_header& h) {
                   " is not a valid size (must be >= 1)");
     voxels *= static_cast<std::uint64_t>(h.dim[a]);
   }
-  if (voxels > kMaxVoxels)
+  if (voxels > kMaxLoadVoxels)
     throw Error(path + ": dim " + std::to_string(h.dim[1]) + "x" + std::to_string(h.dim[2]) + "x" +
                 std::to_string(h.dim[3]) + " = " + std::to_string(voxels) +
                 " voxels, more than the limit of 2^31");

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "refmodel/error.hpp"
+#include "refmodel/math/geometry.hpp"
 #include "refmodel/parallel.hpp"
 #include "refmodel/volume/loaders.hpp"
 
@@ -157,10 +158,6 @@ constexpr double kWallVoxels = 1.5;    // wall thickness in voxels, at every siz
 constexpr std::uint16_t kTubeLumenValue = 0;
 constexpr std::uint16_t kTubeWallValue = 200;
 constexpr std::uint16_t kTubeTissueValue = 40;
-
-struct Vec3 {
-  double x, y, z;
-};
 
 // Squared distance from p to the segment [a, b].
 double segment_distance2(const Vec3& p, const Vec3& a, const Vec3& b) {

@@ -14,8 +14,6 @@
 namespace voxcast::ref {
 namespace {
 
-// Same ceiling as the NIfTI loader: 2^31 voxels.
-constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
 constexpr int kMaxDim = 65535;
 
 const char* type_name(RawType t) {
@@ -48,7 +46,7 @@ Volume load_raw(const std::string& path, const RawSpec& spec) {
                   " is not a valid size (1.." + std::to_string(kMaxDim) + ")");
     voxels *= static_cast<std::uint64_t>(spec.dims[a]);
   }
-  if (voxels > kMaxVoxels)
+  if (voxels > kMaxLoadVoxels)
     throw Error(path + ": volume.dims " + dims_text(spec.dims) + " hold " + std::to_string(voxels) +
                 " voxels, more than the limit of 2^31");
 

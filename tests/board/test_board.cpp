@@ -16,7 +16,7 @@
 #include "rtl_model/sdram/timing.hpp"
 
 namespace voxcast {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using rtl::board::Board;
 using test::board_with;

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 namespace fs = std::filesystem;
 

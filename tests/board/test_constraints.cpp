@@ -15,7 +15,7 @@
 #include "rtl_model/sdram/timing.hpp"
 
 namespace voxcast {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using cosim::ConstraintFormat;
 using rtl::board::Board;

@@ -25,7 +25,7 @@
 #include "refmodel/scene/scene_toml.hpp"
 #include "rtl_model/board/board.hpp"
 
-namespace {
+namespace {  // the top's declarations below name these from the global namespace
 
 namespace hls = voxcast::hls;
 using voxcast::kBalanced;
@@ -86,7 +86,7 @@ void vizard2_frame_top(const hls::FrameState<kBalanced, kUnshadedNoErt>* frame, 
                        int height, hls::OutputPixel<kBalanced>* fb, std::uint64_t* samples);
 
 namespace voxcast {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 namespace fs = std::filesystem;
 

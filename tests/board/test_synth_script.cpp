@@ -14,7 +14,7 @@
 #include "rtl_model/board/board.hpp"
 
 namespace voxcast {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 namespace fs = std::filesystem;
 

@@ -11,7 +11,7 @@
 #include "cosim/image_io.hpp"
 #include "tests/common/voxcast_cli.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using voxcast::test::Command;
 
@@ -120,7 +120,7 @@ TEST(Cli, ErrorsAreOneLineAndNonZero) {
 
 }  // namespace
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 TEST(Cli, EveryFixedPointEngineWritesTheSameImage) {
   const auto d = temp_dir("engines");

@@ -15,7 +15,7 @@
 #include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using cosim::SceneVolume;
 
@@ -199,7 +199,7 @@ TEST(Divergence, IdenticalTracesDoNotDiverge) {
 }  // namespace voxcast::test
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // The reports' "rtl" object and the written scene's [rtl] table come from the
 // one key list (refmodel/scene/rtl_keys.hpp): every key the reader accepts,

@@ -17,7 +17,7 @@
 #include "refmodel/render/raycaster.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using voxcast::cosim::FlythroughOptions;
 using voxcast::cosim::FlythroughResult;

@@ -15,7 +15,7 @@
 #include "tests/common/nifti_bytes.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 namespace fs = std::filesystem;
 

@@ -13,7 +13,7 @@
 #include "refmodel/precision/preset_profiles.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // --- Position drift ------------------------------------------------------------------
 //

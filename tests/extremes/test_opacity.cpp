@@ -10,7 +10,7 @@
 #include "extremes.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // A 16^3 slab of one value seen along +y by a parallel camera: every ray of the
 // 4x4 image crosses the whole slab (15 voxels: 15 * oversampling + 1 samples).

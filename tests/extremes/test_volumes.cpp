@@ -12,7 +12,7 @@
 #include "extremes.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 const ref::CameraPose kOblique{{-3.0, -4.0, -5.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
 

@@ -23,7 +23,7 @@
 #include "fuzz/targets/targets.hpp"
 #include "refmodel/error.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 namespace fs = std::filesystem;
 using Body = void (*)(const std::uint8_t*, std::size_t);

@@ -20,7 +20,7 @@
 #include "tests/heidelberg/fixtures.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 constexpr HeidelbergProfile HP = kVirimProfile;
 using V = hls::virim::VirimParams<HP>;

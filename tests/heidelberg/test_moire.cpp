@@ -27,7 +27,7 @@
 #include "tests/heidelberg/fixtures.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 namespace hb = ref::heidelberg;
 

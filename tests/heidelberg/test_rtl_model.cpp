@@ -19,7 +19,7 @@
 #include "tests/heidelberg/fixtures.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using rtl::virim::VirimRtlConfig;
 using rtl::virim::VirimRtlResult;

@@ -15,7 +15,7 @@
 #include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 const std::string kBase = R"(
 [volume]

@@ -21,7 +21,7 @@
 
 #include "hls/fixed_point.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast::hls;
 

@@ -31,7 +31,7 @@
 #include "refmodel/render/camera.hpp"
 #include "refmodel/render/raycaster.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // make_frame_registers reads only the render inputs here; one named default
 // scene (a temporary Scene{} trips GCC 12's -Wmaybe-uninitialized on its strings).

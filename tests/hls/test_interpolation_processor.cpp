@@ -33,7 +33,7 @@
 #include "refmodel/volume/gradients.hpp"
 #include "refmodel/volume/volume.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast;
 using bittrue::Raw;

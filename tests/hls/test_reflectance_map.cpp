@@ -37,7 +37,7 @@
 
 #include "preset_types.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast;
 namespace bt = voxcast::bittrue;

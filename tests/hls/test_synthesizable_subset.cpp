@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // Removes comments and string/char literals, keeping line breaks.
 std::string strip_comments_and_strings(const std::string& src) {

@@ -16,7 +16,7 @@
 #include "rtl_model/engine.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 ref::Scene scene(bool jitter, const std::string& extra = "render.mode=shaded") {
   return ref::default_scene({"render.width=20", "render.height=20",

@@ -18,7 +18,7 @@
 #include "rtl_model/engine.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // ---- Every engine, leaping off and on ------------------------------------------------------
 

@@ -17,7 +17,7 @@
 #include "refmodel/volume/child_process.hpp"
 
 namespace voxcast::ref {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace std::chrono_literals;
 using Outcome = ChildResult::Outcome;

@@ -35,7 +35,7 @@
 #include "tests/common/nifti_bytes.hpp"
 
 namespace voxcast::ref {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 namespace fs = std::filesystem;
 

@@ -15,7 +15,7 @@
 #include "refmodel/volume/loaders.hpp"
 
 namespace voxcast::ref {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // Normalised coordinate of voxel i on an axis of n voxels (docs/volumes.md).
 double norm(int i, int n) { return (2.0 * i - (n - 1)) / (n - 1); }

@@ -5,7 +5,7 @@
 #include "refmodel/volume/loaders.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 TEST(PartialVolume, InteriorsKeepTheirValueAndEdgesBlend) {
   const int n = 48;

@@ -8,7 +8,7 @@
 #include "refmodel/volume/loaders.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // --- Opacity correction: the result does not depend on the sampling rate ---------
 

@@ -10,7 +10,7 @@
 #include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 const char* const kMinimal = R"(
 [volume]
@@ -158,7 +158,7 @@ TEST(Scene, DocsDocumentEveryKey) {
 }  // namespace voxcast::test
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 TEST(Scene, WritesTomlThatReadsBackEqual) {
   for (const char* name : {"default.toml", "mip.toml", "endoscopy.toml", "colin27.toml"}) {
@@ -179,7 +179,7 @@ TEST(Scene, WritesTomlThatReadsBackEqual) {
 }  // namespace voxcast::test
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // docs/scenes.md's [precision] table lists each width's value in the three
 // presets (columns: default = balanced, vizard2, precise); they must be the

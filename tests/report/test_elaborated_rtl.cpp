@@ -13,7 +13,7 @@
 #include "rtl_model/engine.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 struct Frame {
   bittrue::FrameSetup setup;

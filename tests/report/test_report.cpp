@@ -22,7 +22,7 @@
 #include "rtl_model/pipeline/config.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using cosim::Family;
 using cosim::Op;

@@ -11,7 +11,7 @@
 
 #include "tests/common/voxcast_cli.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using voxcast::test::Command;
 

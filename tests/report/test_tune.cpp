@@ -20,7 +20,7 @@
 #include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 const std::string kTinyScene =
       "[volume]\nsource = \"phantom:shepp-logan?size=24&aa=2\"\n"

@@ -14,7 +14,7 @@
 #include "rtl_model/layout/vizard2_layout.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using rtl::pipeline::IssuePolicy;
 

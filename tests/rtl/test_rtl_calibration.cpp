@@ -20,7 +20,7 @@
 #include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 TEST(RtlCalibration, Vizard2Frames) {
   const char* env = std::getenv("VOXCAST_CALIBRATION");

@@ -13,7 +13,7 @@
 #include "rtl_model/engine.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 void expect_same_image(const ref::QuantImage& rtl, const ref::QuantImage& ref,
                        const std::string& what) {

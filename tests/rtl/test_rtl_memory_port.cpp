@@ -15,7 +15,7 @@
 #include "rtl_model/sdram/timing.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using rtl::pipeline::MemoryModel;
 using rtl::pipeline::MemoryPort;

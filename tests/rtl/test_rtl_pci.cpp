@@ -6,7 +6,7 @@
 #include "rtl_model/pci/pci_bus.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using rtl::pci::Direction;
 using rtl::pci::PciBus;

@@ -17,7 +17,7 @@
 #include "rtl_model/sim/async_fifo.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using rtl::pci::Direction;
 
@@ -132,7 +132,7 @@ TEST(PciClocked, ASlowCoreCostsWaitStatesNotData) {
 }  // namespace voxcast::test
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // Double-buffered readback: frames of 5 ms with a 2.09 ms readback overlap
 // completely (each readback ends 2.09 ms into the next frame); frames of

@@ -11,7 +11,7 @@
 #include "rtl_model/scene_config.hpp"
 #include "rtl_model/sched/registry.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast;
 

@@ -14,7 +14,7 @@
 #include "rtl_model/engine.hpp"
 
 namespace voxcast::test {
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 struct OneRowFrame {
   bittrue::FrameSetup setup;

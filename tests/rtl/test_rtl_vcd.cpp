@@ -16,7 +16,7 @@
 #include "rtl_model/engine.hpp"
 #include "rtl_model/trace/pipeline_trace.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast;
 

@@ -28,7 +28,7 @@
 #include "rtl_model/sched/refresh_eager.hpp"
 #include "rtl_model/sdram/controller.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast::rtl;
 using namespace voxcast::rtl::sdram;

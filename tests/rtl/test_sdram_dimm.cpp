@@ -22,7 +22,7 @@
 #include "refmodel/error.hpp"
 #include "rtl_model/sdram/dimm.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast::rtl;
 using namespace voxcast::rtl::sdram;
@@ -340,7 +340,7 @@ TEST(DimmGeometry, Mt4lsdt864aIs64MBytes) {
 
 }  // namespace
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // Dimm::earliest answers from the table compiled as commands issue; gate()
 // scans every row against the last command of each kind. On a random legal

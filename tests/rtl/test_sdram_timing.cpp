@@ -17,7 +17,7 @@
 #include "refmodel/error.hpp"
 #include "rtl_model/sdram/timing.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast::rtl;
 using namespace voxcast::rtl::sdram;

@@ -15,7 +15,7 @@
 #include "rtl_model/sim/clock.hpp"
 #include "rtl_model/sim/fifo.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast::rtl::sim;
 using voxcast::Error;

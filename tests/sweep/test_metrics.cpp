@@ -7,7 +7,7 @@
 
 #include "cosim/metrics.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using voxcast::cosim::Plane;
 using voxcast::cosim::ssim;

@@ -7,7 +7,7 @@
 
 #include "cli.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace sweep_test;
 namespace fs = std::filesystem;

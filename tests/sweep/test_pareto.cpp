@@ -7,7 +7,7 @@
 #include "cosim/sweep_table.hpp"
 #include "refmodel/error.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast::cosim::sweep;
 using Opt = std::optional<double>;

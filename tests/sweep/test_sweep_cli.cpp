@@ -5,7 +5,7 @@
 
 #include "cli.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace sweep_test;
 namespace fs = std::filesystem;
@@ -196,7 +196,7 @@ TEST(Sweep, WithoutGnuplotThePlotsAreSkippedWithAWarning) {
 
 }  // namespace
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 // --part chooses the part of the resource columns: every point's LUT, FF, DSP
 // and RAM figures are `voxcast report`'s totals for that part and part_pct is

@@ -6,7 +6,7 @@
 #include "cosim/sweep_plan.hpp"
 #include "refmodel/error.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using namespace voxcast::cosim::sweep;
 

@@ -6,7 +6,7 @@
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
-namespace {
+namespace VOXCAST_UNITY_ID {
 
 using voxcast::cosim::truth_key;
 using voxcast::cosim::TruthSettings;
