@@ -38,7 +38,7 @@ ref::Overrides parallel_along(int axis) {
 }
 
 ref::Scene endoscopy(double oversampling) {
-  return ref::load_scene_file(std::string(VOXCAST_RTL_SOURCE_DIR) + "/scenes/endoscopy.toml",
+  return ref::load_scene_file(VOXCAST_RTL_SOURCE_DIR "/scenes/endoscopy.toml",
                               {"precision.profile=vizard2",
                                "render.oversampling=" + std::to_string(oversampling)});
 }
