@@ -24,13 +24,13 @@
 namespace voxcast::cosim {
 namespace {
 
-template <HeidelbergProfile HP>
+template <class HP>
 ref::QuantImage render_hls(const bittrue::VirimSetup& s, const bittrue::VirimMemory& m,
                            int threads, hls::virim::MemoryStats* stats) {
   const auto frame = hls::virim::host::load_virim_frame<HP>(s);
   const std::uint16_t* banks[16];
   hls::virim::host::bank_pointers(m, banks);
-  ref::QuantImage img(s.W, s.H, HP.out_bits);
+  ref::QuantImage img(s.W, s.H, HP::out_bits);
   const auto full = static_cast<std::uint32_t>(img.full_scale());
   std::vector<hls::virim::MemoryStats> line_stats(static_cast<std::size_t>(s.H));
   ref::parallel_for(
@@ -129,7 +129,7 @@ void check_rtl_matches_hls(const ref::QuantImage& rtl_img, const ref::QuantImage
 }
 
 bool hls_supports_heidelberg(const HeidelbergProfile& p) {
-  return hls::virim::host::dispatch_heidelberg_profile(p, []<HeidelbergProfile>() {});
+  return hls::virim::host::dispatch_heidelberg_profile(p, []<class>() {});
 }
 
 ref::QuantImage hls_render_heidelberg(const bittrue::VirimSetup& setup,
@@ -137,7 +137,7 @@ ref::QuantImage hls_render_heidelberg(const bittrue::VirimSetup& setup,
                                       hls::virim::MemoryStats* stats) {
   check_hls(setup.profile);
   ref::QuantImage img;
-  hls::virim::host::dispatch_heidelberg_profile(setup.profile, [&]<HeidelbergProfile HP>() {
+  hls::virim::host::dispatch_heidelberg_profile(setup.profile, [&]<class HP>() {
     img = render_hls<HP>(setup, memory, threads, stats);
   });
   return img;

@@ -12,7 +12,7 @@
 namespace voxcast::cosim {
 namespace {
 
-template <PrecisionProfile P>
+template <class P>
 std::array<std::uint32_t, 4> to_array(const hls::OutputPixel<P>& px) {
   return {static_cast<std::uint32_t>(px.ch[0].to_uint64()),
           static_cast<std::uint32_t>(px.ch[1].to_uint64()),
@@ -20,7 +20,7 @@ std::array<std::uint32_t, 4> to_array(const hls::OutputPixel<P>& px) {
           static_cast<std::uint32_t>(px.ch[3].to_uint64())};
 }
 
-template <PrecisionProfile P>
+template <class P>
 ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
                        int threads, ref::FrameStats* stats) {
   const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
@@ -37,7 +37,7 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
                             &row_skipped[static_cast<std::size_t>(y)]);
       },
       threads);
-  ref::QuantImage img(w, h, P.out_bits);
+  ref::QuantImage img(w, h, P::out_bits);
   for (std::size_t i = 0; i < fb.size(); ++i) img.pixels[i] = to_array<P>(fb[i]);
   if (stats) {
     *stats = ref::FrameStats{};
@@ -50,7 +50,7 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
 
 // Records every unit's output as doubles, in bittrue::RayTrace's layout, so a
 // trace compares field by field with the bit-true engine's.
-template <PrecisionProfile P>
+template <class P>
 struct Recorder {
   bittrue::RayTrace& out;
 
@@ -99,7 +99,7 @@ struct Recorder {
   }
 };
 
-template <PrecisionProfile P>
+template <class P>
 bittrue::RayTrace trace(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory, int px,
                         int py) {
   const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
@@ -121,7 +121,7 @@ void with_profile(const PrecisionProfile& p, Fn&& fn) {
 }  // namespace
 
 bool hls_supports(const PrecisionProfile& p) {
-  return hls::host::dispatch_profile(p, []<PrecisionProfile>() {});
+  return hls::host::dispatch_profile(p, []<class>() {});
 }
 
 std::string hls_supported_profiles() { return hls::host::kCompiledProfileNames; }
@@ -130,7 +130,7 @@ ref::QuantImage hls_render_image(const bittrue::FrameSetup& setup,
                                  const bittrue::VoxelMemory& memory, int threads,
                                  ref::FrameStats* stats) {
   ref::QuantImage img;
-  with_profile(setup.profile, [&]<PrecisionProfile P>() {
+  with_profile(setup.profile, [&]<class P>() {
     img = render<P>(setup, memory, threads, stats);
   });
   return img;
@@ -139,7 +139,7 @@ ref::QuantImage hls_render_image(const bittrue::FrameSetup& setup,
 bittrue::RayTrace hls_trace_ray(const bittrue::FrameSetup& setup,
                                 const bittrue::VoxelMemory& memory, int px, int py) {
   bittrue::RayTrace t;
-  with_profile(setup.profile, [&]<PrecisionProfile P>() { t = trace<P>(setup, memory, px, py); });
+  with_profile(setup.profile, [&]<class P>() { t = trace<P>(setup, memory, px, py); });
   return t;
 }
 

@@ -22,15 +22,16 @@ std::string ns3(double ns) {
 }
 
 // The presets compiled into hls/vizard2_synth_top.cpp, by the name of their
-// constant (the -D value) and their preset name.
+// traits type (the -D value, refmodel/precision/profile_traits.hpp) and their
+// preset name.
 struct CompiledPreset {
   const char* constant;
   const char* name;
   PrecisionProfile profile;
 };
-constexpr CompiledPreset kCompiled[] = {{"kVizard2", "vizard2", kVizard2},
-                                        {"kBalanced", "balanced", kBalanced},
-                                        {"kPrecise", "precise", kPrecise}};
+constexpr CompiledPreset kCompiled[] = {{"Vizard2Traits", "vizard2", kVizard2},
+                                        {"BalancedTraits", "balanced", kBalanced},
+                                        {"PreciseTraits", "precise", kPrecise}};
 
 // Tcl braces quote a word literally; a path with braces or newlines could not be.
 std::string tcl_word(const std::string& s) {
@@ -57,10 +58,14 @@ std::vector<SynthTop> synth_tops(const ref::Scene& scene) {
 
 std::string synth_cflags(const SynthTop& top, const std::string& source_root,
                          const std::string& config_header) {
-  // C++20: the kernels take the profile and the units as class-type template
-  // parameters. VOXCAST_VENDOR_TYPES: the tool's own ap_fixed/ap_int
-  // (hls/types.hpp). -include: the scene's units (hls/vizard2_synth_top.cpp).
-  std::string f = "-std=c++20 -I" + source_root + " -DVOXCAST_VENDOR_TYPES " + top.profile_macro;
+  // C++14: the vendor front ends' dialect (UG1399), which the design is
+  // written in (the dialect tests check it). VOXCAST_VENDOR_TYPES: the tool's
+  // own ap_fixed/ap_int (hls/types.hpp). VOXCAST_HLS_KERNELS_ONLY: the host
+  // loaders stay out of a C simulation too, where __SYNTHESIS__ is not
+  // defined (hls/pragma.hpp). -include: the scene's units
+  // (hls/vizard2_synth_top.cpp).
+  std::string f = "-std=c++14 -I" + source_root +
+                  " -DVOXCAST_VENDOR_TYPES -DVOXCAST_HLS_KERNELS_ONLY " + top.profile_macro;
   if (!config_header.empty()) f += " -include " + config_header;
   return f;
 }
@@ -76,6 +81,21 @@ hls::Units elaborated_units(const ref::Elaboration& e) {
                     .ert = e.ert,
                     .mip = e.mip,
                     .space_leaping = e.space_leaping};
+}
+
+// One `/* name = */ true,` line per unit of hls::UnitSet, in its parameter order.
+static std::string unit_set_arguments(const hls::Units& u) {
+  const std::pair<const char*, bool> flags[] = {
+      {"perspective", u.perspective},       {"parallel_origin", u.parallel_origin},
+      {"gradients", u.gradients},           {"classification", u.classification},
+      {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
+      {"compositor", u.compositor},         {"ert", u.ert},
+      {"mip", u.mip},                       {"space_leaping", u.space_leaping}};
+  std::string out;
+  for (std::size_t i = 0; i < std::size(flags); ++i)
+    out += std::string("    /* ") + flags[i].first + " = */ " + (flags[i].second ? "true" : "false") +
+           (i + 1 < std::size(flags) ? ",\n" : ">;\n");
+  return out;
 }
 
 std::string elaborated_config_header(const ref::Scene& scene, const ref::Elaboration& e,
@@ -94,31 +114,23 @@ std::string elaborated_config_header(const ref::Scene& scene, const ref::Elabora
      << "//\n// Left out:\n";
   for (const ref::Omission& o : e.omitted) os << "//   " << o.unit << ": " << o.reason << "\n";
   os << "#pragma once\n\n#define VOXCAST_ELABORATED_CONFIG 1\n\n"
-     << "#include \"hls/units.hpp\"\n#include \"refmodel/precision/preset_profiles.hpp\"\n\n"
-     << "namespace voxcast::elaborated {\n\n"
+     << "#include \"hls/units.hpp\"\n#include \"refmodel/precision/profile_traits.hpp\"\n\n"
+     << "// C++14, as the design (the vendor front ends' dialect).\n"
+     << "namespace voxcast {\nnamespace elaborated {\n\n"
      << "// precision.profile = \"" << top.profile_name << "\"\n"
-     << "inline constexpr PrecisionProfile kProfile = " << constant << ";\n\n"
-     << "inline constexpr hls::Units kUnits{\n"
-     << "    .perspective = " << b(u.perspective) << ",\n"
-     << "    .parallel_origin = " << b(u.parallel_origin) << ",\n"
-     << "    .gradients = " << b(u.gradients) << ",\n"
-     << "    .classification = " << b(u.classification) << ",\n"
-     << "    .reflectance_map = " << b(u.reflectance_map) << ",\n"
-     << "    .shader = " << b(u.shader) << ",\n"
-     << "    .compositor = " << b(u.compositor) << ",\n"
-     << "    .ert = " << b(u.ert) << ",\n"
-     << "    .mip = " << b(u.mip) << ",\n"
-     << "    .space_leaping = " << b(u.space_leaping) << ",\n"
-     << "};\n\n"
+     << "using Profile = " << constant << ";\n\n"
+     << "// The units present (hls/units.hpp, UnitSet).\n"
+     << "using Units = hls::UnitSet<\n"
+     << unit_set_arguments(u) << "\n"
      << "// Sizes from the data and the transfer function (what `voxcast report`\n"
      << "// prices); the kernels' fields keep the profile's widths, the top checks\n"
      << "// that these fit them.\n"
-     << "inline constexpr int kValueStoreBits = " << e.value_store_bits << ";\n"
-     << "inline constexpr int kGradientStoreBits = " << e.gradient_store_bits << ";\n"
-     << "inline constexpr int kClassEntries = " << e.class_entries << ";\n"
-     << "inline constexpr int kClassColorFields = " << e.class_color_fields << ";\n"
-     << "inline constexpr bool kClassAlphaVaries = " << b(e.class_alpha_varies) << ";\n\n"
-     << "}  // namespace voxcast::elaborated\n";
+     << "constexpr int kValueStoreBits = " << e.value_store_bits << ";\n"
+     << "constexpr int kGradientStoreBits = " << e.gradient_store_bits << ";\n"
+     << "constexpr int kClassEntries = " << e.class_entries << ";\n"
+     << "constexpr int kClassColorFields = " << e.class_color_fields << ";\n"
+     << "constexpr bool kClassAlphaVaries = " << b(e.class_alpha_varies) << ";\n\n"
+     << "}  // namespace elaborated\n}  // namespace voxcast\n";
   return os.str();
 }
 
@@ -159,7 +171,7 @@ std::vector<SynthScript> vitis_scripts(const ref::Scene& scene, const std::strin
        << "# Run: vitis_hls -f " << top.function << "_vitis.tcl   (the project is created beside "
        << "this script)\n"
        << "#\n"
-       << "# Interface (hls/vizard2_top.hpp, vizard2_frame): s_axilite width, height, return;\n"
+       << "# Interface (hls/vizard2_synth_top.cpp): s_axilite width, height, return;\n"
        << "# m_axi bundles gmem_frame (frame state), dimm0..dimm3 (two voxel banks each, the\n"
        << "# card's four DIMM channels), gmem_fb (frame buffer, sample count).\n"
        << "# Part: " << board.fpga.tool_part << " (the card's part: " << board.fpga.part << ")\n"

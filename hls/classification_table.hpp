@@ -13,30 +13,31 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
-#include "refmodel/precision/profile.hpp"
 
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 #include <vector>
 
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
-template <PrecisionProfile P>
+template <class P>
 struct ClassificationParams {
-  static constexpr int value_bits = P.value_bits;              // vb
-  static constexpr int sample_frac_bits = P.sample_frac_bits;  // sf
-  static constexpr int addr_bits = P.tf_addr_bits;
+  static constexpr int value_bits = P::value_bits;              // vb
+  static constexpr int sample_frac_bits = P::sample_frac_bits;  // sf
+  static constexpr int addr_bits = P::tf_addr_bits;
   static constexpr int entries = 1 << addr_bits;
-  static constexpr int color_bits = P.color_bits;
-  static constexpr int alpha_bits = P.alpha_bits;
-  static constexpr int k_bits = P.k_bits;
+  static constexpr int color_bits = P::color_bits;
+  static constexpr int alpha_bits = P::alpha_bits;
+  static constexpr int k_bits = P::k_bits;
   // Payload bits of one entry (the vizard2 SRAM words add 8 reserved bits, §4.3).
   static constexpr int entry_bits = 3 * color_bits + alpha_bits + 3 * k_bits;
 
@@ -61,7 +62,7 @@ struct ClassificationParams {
 // ---- 2. The unit ----------------------------------------------------------------------------
 
 // One table entry (§4.2).
-template <PrecisionProfile P>
+template <class P>
 struct ClassEntry {
   using Params = ClassificationParams<P>;
   typename Params::color_t r, g, b;
@@ -75,13 +76,13 @@ struct ClassEntry {
 // (`#pragma HLS AGGREGATE variable=<table>.entry compact=bit` and
 // `#pragma HLS BIND_STORAGE variable=<table>.entry type=ram_1p impl=bram`):
 // one read per sample, as the paper's two 32-bit SRAMs read in parallel.
-template <PrecisionProfile P>
+template <class P>
 struct ClassificationTable {
   ClassEntry<P> entry[ClassificationParams<P>::entries];
 };
 
 // §4.1: addr = SAT(Q_RND(value · 2^(tf_addr_bits - vb), 0), 0, 2^tf_addr_bits - 1).
-template <PrecisionProfile P>
+template <class P>
 typename ClassificationParams<P>::addr_t class_address(
     const typename ClassificationParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -94,7 +95,7 @@ typename ClassificationParams<P>::addr_t class_address(
 }
 
 // §4: one table read per sample.
-template <PrecisionProfile P>
+template <class P>
 ClassEntry<P> classify(const ClassificationTable<P>& table,
                        const typename ClassificationParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -109,11 +110,14 @@ struct Vizard2Words {
   uint_t<32> word[2];
 };
 
-template <PrecisionProfile P>
-concept Vizard2Layout = P.color_bits == 8 && P.alpha_bits == 8 && P.k_bits == 8;
+// Profiles whose entries have the vizard2 field widths (8-bit r, g, b, alpha,
+// ka, kd, ks); the packing below exists only for them.
+template <class P>
+struct Vizard2Layout
+    : std::integral_constant<bool, P::color_bits == 8 && P::alpha_bits == 8 && P::k_bits == 8> {};
 
-template <PrecisionProfile P>
-requires Vizard2Layout<P> Vizard2Words pack_vizard2_words(const ClassEntry<P>& e) {
+template <class P, typename std::enable_if<Vizard2Layout<P>::value, int>::type = 0>
+Vizard2Words pack_vizard2_words(const ClassEntry<P>& e) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   Vizard2Words w;
   w.word[0] = 0;
@@ -129,8 +133,8 @@ requires Vizard2Layout<P> Vizard2Words pack_vizard2_words(const ClassEntry<P>& e
 }
 
 // The inverse; the reserved bits [7:0] of word[1] are ignored.
-template <PrecisionProfile P>
-requires Vizard2Layout<P> ClassEntry<P> unpack_vizard2_words(const Vizard2Words& w) {
+template <class P, typename std::enable_if<Vizard2Layout<P>::value, int>::type = 0>
+ClassEntry<P> unpack_vizard2_words(const Vizard2Words& w) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   ClassEntry<P> e;
   e.r.range() = w.word[0].range(31, 24).to_uint64();
@@ -144,11 +148,11 @@ requires Vizard2Layout<P> ClassEntry<P> unpack_vizard2_words(const Vizard2Words&
 }
 
 // ---- 3. Host side (not synthesized) -------------------------------------------------------
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 namespace host {
 
 // One entry from the driver's raw integers (§4.2), and back.
-template <PrecisionProfile P>
+template <class P>
 ClassEntry<P> entry_from_raw(const bittrue::ClassEntry& raw) {
   ClassEntry<P> e;
   e.r.range() = std::uint64_t{raw.r};
@@ -161,7 +165,7 @@ ClassEntry<P> entry_from_raw(const bittrue::ClassEntry& raw) {
   return e;
 }
 
-template <PrecisionProfile P>
+template <class P>
 bittrue::ClassEntry entry_to_raw(const ClassEntry<P>& e) {
   bittrue::ClassEntry raw;
   raw.r = e.r.range().to_uint();
@@ -176,11 +180,11 @@ bittrue::ClassEntry entry_to_raw(const ClassEntry<P>& e) {
 
 // Loads the whole table (2^tf_addr_bits raw entries, bittrue::make_class_table).
 // Returns false (and leaves the table unchanged) if the size does not match.
-template <PrecisionProfile P>
+template <class P>
 bool load_class_table(ClassificationTable<P>& table, const std::vector<bittrue::ClassEntry>& raw) {
   constexpr int n = ClassificationParams<P>::entries;
   if (raw.size() != static_cast<std::size_t>(n)) return false;
-  [[maybe_unused]] load_class_entries : for (int i = 0; i < n; ++i) {
+  [[gnu::unused]] load_class_entries : for (int i = 0; i < n; ++i) {
     table.entry[i] = entry_from_raw<P>(raw[static_cast<std::size_t>(i)]);
   }
   return true;
@@ -188,4 +192,5 @@ bool load_class_table(ClassificationTable<P>& table, const std::vector<bittrue::
 
 }  // namespace host
 #endif
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast

@@ -17,22 +17,22 @@
 #include "hls/shader.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
-#include "refmodel/precision/profile.hpp"
 
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 #include <ostream>
 
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
-template <PrecisionProfile P>
+template <class P>
 struct CompositorParams {
-  static constexpr int acc_bits = P.acc_bits;
-  static constexpr int out_bits = P.out_bits;
+  static constexpr int acc_bits = P::acc_bits;
+  static constexpr int out_bits = P::out_bits;
   // C[3] and A: acc_bits fraction bits, one integer bit, in [0, 1] (§7).
   using acc_t = ufixed<acc_bits + 1, 1>;
   // w = Q_RND((1 - A)·alpha_c, acc_bits) and Q_RND(w·c, acc_bits), both in [0, 1].
@@ -42,17 +42,17 @@ struct CompositorParams {
   // MIP: the interpolated value (vb.sf), the RM register Q_RND(1/max_stored, df) <= 1, and
   // Q_RND(M·RM, acc_bits) before its clamp to 1 (M·RM < 2^vb as RM <= 1).
   using value_t = typename ClassificationParams<P>::value_t;
-  using rm_t = ufixed<P.dir_frac_bits + 1, 1>;
-  using grey_t = ufixed<acc_bits + P.value_bits + 1, P.value_bits + 1, RND>;
+  using rm_t = ufixed<P::dir_frac_bits + 1, 1>;
+  using grey_t = ufixed<acc_bits + P::value_bits + 1, P::value_bits + 1, RND>;
   // §8: Q_RND(x·(2^out_bits - 1), 0) of x in [0, 1] (the SAT never acts, x <= 1).
   using out_round_t = ufixed<out_bits, out_bits, RND, SAT>;
   using out_t = uint_t<out_bits>;
   static constexpr unsigned out_max = (1u << out_bits) - 1u;
 
   // The widest products: (1 - A)·alpha_c, w·c, M·RM, x·(2^out_bits - 1).
-  static_assert(acc_bits + 1 + P.alpha_bits <= 64, "(1 - A) x alpha exceeds 64 bits");
-  static_assert(acc_bits + 1 + P.shade_bits <= 64, "w x c exceeds 64 bits");
-  static_assert(P.value_bits + P.sample_frac_bits + P.dir_frac_bits + 1 <= 64,
+  static_assert(acc_bits + 1 + P::alpha_bits <= 64, "(1 - A) x alpha exceeds 64 bits");
+  static_assert(acc_bits + 1 + P::shade_bits <= 64, "w x c exceeds 64 bits");
+  static_assert(P::value_bits + P::sample_frac_bits + P::dir_frac_bits + 1 <= 64,
                 "M x RM exceeds 64 bits");
   static_assert(out_bits >= 1 && out_bits <= 16, "out_bits out of range");
 };
@@ -60,7 +60,7 @@ struct CompositorParams {
 // ---- 2. The unit ----------------------------------------------------------------------------
 
 // The per-frame registers of the unit (§0, §7).
-template <PrecisionProfile P>
+template <class P>
 struct CompositorRegisters {
   bool ert_enabled = false;                               // threshold below 1
   typename CompositorParams<P>::acc_t ert_threshold = 0;  // Q_RND(threshold, acc_bits)
@@ -69,7 +69,7 @@ struct CompositorRegisters {
 
 // The accumulator state of one ray: premultiplied colour and opacity, both 0 at
 // the ray's start. Registers: the top-level kernel partitions C completely.
-template <PrecisionProfile P>
+template <class P>
 struct Accumulator {
   using acc_t = typename CompositorParams<P>::acc_t;
   acc_t C[3] = {acc_t(0), acc_t(0), acc_t(0)};
@@ -81,7 +81,7 @@ struct Accumulator {
 //   C[k] = SAT(C[k] + Q_RND(w·c[k], acc_bits), 0, 1),  A = SAT(A + w, 0, 1).
 // A sample with alpha_c = 0 is skipped: returns false, state unchanged, and the
 // caller must not test ERT after it (§7).
-template <PrecisionProfile P>
+template <class P>
 bool composite(Accumulator<P>& acc, const ShadedColor<P>& c,
                const typename CompositorParams<P>::alpha_t& alpha_c) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -92,7 +92,7 @@ bool composite(Accumulator<P>& acc, const ShadedColor<P>& c,
   const acc_t one = 1;
   const acc_t transparency = one - acc.A;  // exact: A <= 1
   const weight_t w = transparency * alpha_c;
-  [[maybe_unused]] composite_channels : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] composite_channels : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const weight_t contribution = w * c.c[k];
     const auto sum = acc.C[k] + contribution;
@@ -104,14 +104,14 @@ bool composite(Accumulator<P>& acc, const ShadedColor<P>& c,
 }
 
 // §7.3: early ray termination after a composited sample.
-template <PrecisionProfile P>
+template <class P>
 bool ert_reached(const Accumulator<P>& acc, const CompositorRegisters<P>& regs) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   return regs.ert_enabled && acc.A >= regs.ert_threshold;
 }
 
 // §7 MIP: M = max_j value_j (M starts at 0).
-template <PrecisionProfile P>
+template <class P>
 void mip_update(typename CompositorParams<P>::value_t& M,
                 const typename CompositorParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -119,7 +119,7 @@ void mip_update(typename CompositorParams<P>::value_t& M,
 }
 
 // §7 MIP: grey = SAT(Q_RND(M·RM, acc_bits), 0, 1); the pixel is (grey, grey, grey, 1).
-template <PrecisionProfile P>
+template <class P>
 Accumulator<P> mip_pixel(const typename CompositorParams<P>::value_t& M,
                          const CompositorRegisters<P>& regs) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -137,7 +137,7 @@ Accumulator<P> mip_pixel(const typename CompositorParams<P>::value_t& M,
 }
 
 // §8: one channel, out = Q_RND(x·(2^out_bits - 1), 0).
-template <PrecisionProfile P>
+template <class P>
 typename CompositorParams<P>::out_t quantize_output(const typename CompositorParams<P>::acc_t& x) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = CompositorParams<P>;
@@ -147,16 +147,16 @@ typename CompositorParams<P>::out_t quantize_output(const typename CompositorPar
 
 // §8: the pixel (r, g, b, alpha) of a finished ray. A miss is (0, 0, 0, 0), the
 // output of a fresh Accumulator.
-template <PrecisionProfile P>
+template <class P>
 struct OutputPixel {
   typename CompositorParams<P>::out_t ch[4];
 };
 
-template <PrecisionProfile P>
+template <class P>
 OutputPixel<P> output(const Accumulator<P>& acc) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   OutputPixel<P> px;
-  [[maybe_unused]] output_channels : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] output_channels : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     px.ch[k] = quantize_output<P>(acc.C[k]);
   }
@@ -164,8 +164,8 @@ OutputPixel<P> output(const Accumulator<P>& acc) {
   return px;
 }
 
-#ifndef __SYNTHESIS__
-template <PrecisionProfile P>
+#if VOXCAST_HLS_HOST_CODE
+template <class P>
 std::ostream& operator<<(std::ostream& os, const Accumulator<P>& acc) {
   return os << "Accumulator{C=(" << acc.C[0].to_double() << ", " << acc.C[1].to_double() << ", "
             << acc.C[2].to_double() << "), A=" << acc.A.to_double() << "}";
@@ -173,10 +173,10 @@ std::ostream& operator<<(std::ostream& os, const Accumulator<P>& acc) {
 #endif
 
 // ---- 3. Host side (not synthesized) -------------------------------------------------------
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 namespace host {
 
-template <PrecisionProfile P>
+template <class P>
 CompositorRegisters<P> compositor_registers(const bittrue::FrameRegisters& regs) {
   CompositorRegisters<P> r;
   r.ert_enabled = regs.ert_enabled;
@@ -187,4 +187,5 @@ CompositorRegisters<P> compositor_registers(const bittrue::FrameRegisters& regs)
 
 }  // namespace host
 #endif
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast

@@ -21,30 +21,30 @@
 
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
-#include "refmodel/precision/profile.hpp"
 #include "refmodel/render/jitter.hpp"
 
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 #include <vector>
 
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
 // a = addr_bits, pf = pos_frac_bits, df = dir_frac_bits, tf = t_frac_bits,
 // sb = rsqrt_seed_bits. Every integer width below follows from a value range
 // stated next to it; every product and sum between rounding points is exact in
 // the operator's widened result type (docs/pipeline.md, "Notation").
-template <PrecisionProfile P>
+template <class P>
 struct GeometryParams {
-  static constexpr int a = P.addr_bits;
-  static constexpr int pf = P.pos_frac_bits;
-  static constexpr int df = P.dir_frac_bits;
-  static constexpr int tf = P.t_frac_bits;
-  static constexpr int sb = P.rsqrt_seed_bits;
+  static constexpr int a = P::addr_bits;
+  static constexpr int pf = P::pos_frac_bits;
+  static constexpr int df = P::dir_frac_bits;
+  static constexpr int tf = P::t_frac_bits;
+  static constexpr int sb = P::rsqrt_seed_bits;
   static constexpr int seed_entries = 1 << sb;
 
   // Pixel coordinates: render.width/height <= 8192 (scene_toml.cpp), so px < 2^13.
@@ -106,7 +106,7 @@ struct GeometryParams {
 // ---- 2. Registers and ROM -------------------------------------------------------------------
 // docs/pipeline.md §0, loaded once per frame by host::load_geometry_registers.
 // (P and R of the spec are Pcol and Rrow here: P is the profile.)
-template <PrecisionProfile P>
+template <class P>
 struct GeometryRegisters {
   using G = GeometryParams<P>;
   bool perspective = true;
@@ -124,7 +124,7 @@ struct GeometryRegisters {
 };
 
 // The rsqrt seed ROM (§1.2), 2^rsqrt_seed_bits entries.
-template <PrecisionProfile P>
+template <class P>
 struct RsqrtRom {
   typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries];
 };
@@ -132,7 +132,7 @@ struct RsqrtRom {
 // The result of ray setup for one pixel (§1.5-1.6). k_in, k_out (in samples) are
 // kept for the tests and for mismatch reports; a miss has n = 0 and p0 = k_in =
 // k_out = 0.
-template <PrecisionProfile P>
+template <class P>
 struct RaySetup {
   using G = GeometryParams<P>;
   bool hit = false;
@@ -145,18 +145,18 @@ struct RaySetup {
 // ---- 3. The unit ----------------------------------------------------------------------------
 
 // §1.1: perspective pixel direction d = A + px·B + py·C (exact).
-template <PrecisionProfile P>
+template <class P>
 void pixel_direction(const GeometryRegisters<P>& r, typename GeometryParams<P>::pixel_t px,
                      typename GeometryParams<P>::pixel_t py,
                      typename GeometryParams<P>::dir_t d[3]) {
-  [[maybe_unused]] dir_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] dir_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     d[k] = r.A[k] + px * r.B[k] + py * r.C[k];
   }
 }
 
 // §1.2: seed look-up and two Newton steps of y <- y·(3 - m·y²)/2; y ~ 1/sqrt(m).
-template <PrecisionProfile P>
+template <class P>
 typename GeometryParams<P>::y_t rsqrt_newton(
     const typename GeometryParams<P>::m_t& m,
     const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries]) {
@@ -167,7 +167,7 @@ typename GeometryParams<P>::y_t rsqrt_newton(
   if (idx > static_cast<unsigned>(G::seed_entries - 1)) idx = G::seed_entries - 1;
   typename G::y_t y = seed[idx];
   const typename G::three_t three = 3;
-  [[maybe_unused]] newton_loop : for (int it = 0; it < 2; ++it) {
+  [[gnu::unused]] newton_loop : for (int it = 0; it < 2; ++it) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename G::sq_t t = y * y;                 // Q_RND(y·y, df)
     t = m * t;                                  // Q_RND(m·t, df)
@@ -179,7 +179,7 @@ typename GeometryParams<P>::y_t rsqrt_newton(
 }
 
 // §1.2: u = Q_RND(d·2^e · y, df), the unit direction (u = 0 if d = 0).
-template <PrecisionProfile P>
+template <class P>
 void normalize_direction(
     const typename GeometryParams<P>::dir_t d[3],
     const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries],
@@ -188,12 +188,12 @@ void normalize_direction(
   const typename G::n2_t n2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   // Leading-zero count (a priority encoder over the 2df + 2 bits of n2).
   int lz = G::n2_t::width;
-  [[maybe_unused]] lzc_loop : for (int i = 0; i < G::n2_t::width; ++i) {
+  [[gnu::unused]] lzc_loop : for (int i = 0; i < G::n2_t::width; ++i) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     if (n2[i]) lz = G::n2_t::width - 1 - i;
   }
   if (lz == G::n2_t::width) {
-    [[maybe_unused]] zero_loop : for (int k = 0; k < 3; ++k) {
+    [[gnu::unused]] zero_loop : for (int k = 0; k < 3; ++k) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       u[k] = 0;
     }
@@ -204,7 +204,7 @@ void normalize_direction(
   const int e = lz / 2 - 1;
   typename G::n2_norm_t nn = n2;
   typename G::dnorm_t dn[3];
-  [[maybe_unused]] norm_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] norm_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     dn[k] = d[k];
     if (e < 0) {
@@ -220,28 +220,28 @@ void normalize_direction(
   }
   const typename G::m_t m = nn;  // Q_RND(n2·4^e, df)
   const typename G::y_t y = rsqrt_newton<P>(m, seed);
-  [[maybe_unused]] unit_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] unit_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     u[k] = dn[k] * y;  // Q_RND(d'·y, df)
   }
 }
 
 // §1.3: s[a] = Q_RND(u[a]·K[a], pf).
-template <PrecisionProfile P>
+template <class P>
 void step_vector(const GeometryRegisters<P>& r, const typename GeometryParams<P>::unit_t u[3],
                  typename GeometryParams<P>::step_t s[3]) {
-  [[maybe_unused]] step_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] step_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     s[k] = u[k] * r.K[k];
   }
 }
 
 // §1.4, parallel: o = O + px·P + py·R (exact; the host keeps it in range).
-template <PrecisionProfile P>
+template <class P>
 void pixel_origin(const GeometryRegisters<P>& r, typename GeometryParams<P>::pixel_t px,
                   typename GeometryParams<P>::pixel_t py,
                   typename GeometryParams<P>::origin_t o[3]) {
-  [[maybe_unused]] origin_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] origin_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     o[k] = r.O[k] + px * r.Pcol[k] + py * r.Rrow[k];
   }
@@ -249,7 +249,7 @@ void pixel_origin(const GeometryRegisters<P>& r, typename GeometryParams<P>::pix
 
 // §1.5-1.6: clip in units of samples, sample count and first position.
 // `jitter` (render.jitter, else 0): the first sample's delay in samples, in [0, 1).
-template <PrecisionProfile P>
+template <class P>
 RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParams<P>::origin_t o[3],
                      const typename GeometryParams<P>::step_t s[3],
                      const typename GeometryParams<P>::k_t& jitter = 0) {
@@ -260,7 +260,7 @@ RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParam
   k_t k_out = 0;
   bool any = false;    // an axis with s != 0
   bool inside = true;  // every axis with s = 0 has LO <= o <= HI
-  [[maybe_unused]] clip_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] clip_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     ray.s[k] = s[k];
     if (s[k] == 0) {
@@ -290,7 +290,7 @@ RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParam
     ray.k_out = 0;
     ray.n = 0;
   }
-  [[maybe_unused]] p0_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] p0_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename G::kstep_t d = k_in * s[k];  // Q_RND(k_in·s, pf)
     if (ray.hit) {
@@ -304,7 +304,7 @@ RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParam
 
 // render.jitter: the ray parameter offset J·2^-tf of pixel (px, py), J the top
 // tf bits of ref::pixel_hash (an integer hash, refmodel/render/space_leaping.hpp).
-template <PrecisionProfile P>
+template <class P>
 typename GeometryParams<P>::k_t pixel_jitter(const GeometryRegisters<P>& r, int px, int py) {
   using G = GeometryParams<P>;
   typename G::k_t j = 0;
@@ -313,7 +313,7 @@ typename GeometryParams<P>::k_t pixel_jitter(const GeometryRegisters<P>& r, int 
 }
 
 // §1, perspective camera: direction, rsqrt unit, step vector, clip.
-template <PrecisionProfile P>
+template <class P>
 RaySetup<P> ray_setup_perspective(
     const GeometryRegisters<P>& r,
     const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries], int px, int py) {
@@ -330,7 +330,7 @@ RaySetup<P> ray_setup_perspective(
 }
 
 // §1, parallel camera: no rsqrt unit (u = U).
-template <PrecisionProfile P>
+template <class P>
 RaySetup<P> ray_setup_parallel(const GeometryRegisters<P>& r, int px, int py) {
   using G = GeometryParams<P>;
   const typename G::pixel_t x = px;
@@ -338,7 +338,7 @@ RaySetup<P> ray_setup_parallel(const GeometryRegisters<P>& r, int px, int py) {
   typename G::unit_t u[3];
   typename G::step_t s[3];
   typename G::origin_t o[3];
-  [[maybe_unused]] unit_copy_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] unit_copy_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     u[k] = r.U[k];
   }
@@ -348,7 +348,7 @@ RaySetup<P> ray_setup_parallel(const GeometryRegisters<P>& r, int px, int py) {
 }
 
 // §1, either camera (the register file says which).
-template <PrecisionProfile P>
+template <class P>
 RaySetup<P> ray_setup(const GeometryRegisters<P>& r,
                       const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries],
                       int px, int py) {
@@ -357,17 +357,17 @@ RaySetup<P> ray_setup(const GeometryRegisters<P>& r,
 }
 
 // §2: p += s (exact in pf bits).
-template <PrecisionProfile P>
+template <class P>
 void step_position(typename GeometryParams<P>::pos_t p[3],
                    const typename GeometryParams<P>::step_t s[3]) {
-  [[maybe_unused]] advance_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] advance_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     p[k] += s[k];
   }
 }
 
 // ---- 4. Host side: register and ROM loading (not synthesized) ------------------------------
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 namespace host {
 
 // A fixed or integer type holding the raw two's-complement integer `raw` (its low W bits).
@@ -378,13 +378,13 @@ T from_raw_bits(std::int64_t raw) {
   return x;
 }
 
-template <PrecisionProfile P>
+template <class P>
 GeometryRegisters<P> load_geometry_registers(const bittrue::FrameRegisters& f) {
   using G = GeometryParams<P>;
   GeometryRegisters<P> r;
   r.perspective = f.perspective;
   r.jitter = f.jitter;
-  [[maybe_unused]] register_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] register_loop : for (int k = 0; k < 3; ++k) {
     const auto i = static_cast<std::size_t>(k);
     r.A[k] = from_raw_bits<typename G::dir_t>(f.A[i]);
     r.B[k] = from_raw_bits<typename G::dir_t>(f.B[i]);
@@ -406,14 +406,15 @@ GeometryRegisters<P> load_geometry_registers(const bittrue::FrameRegisters& f) {
   return r;
 }
 
-template <PrecisionProfile P>
+template <class P>
 void load_rsqrt_rom(const std::vector<bittrue::Raw>& seed, RsqrtRom<P>& rom) {
   using G = GeometryParams<P>;
-  [[maybe_unused]] rom_loop : for (int i = 0; i < G::seed_entries; ++i) rom.seed[i] =
+  [[gnu::unused]] rom_loop : for (int i = 0; i < G::seed_entries; ++i) rom.seed[i] =
       from_raw_bits<typename G::y_t>(seed[static_cast<std::size_t>(i)]);
 }
 
 }  // namespace host
 #endif
 
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast

@@ -5,7 +5,9 @@
 // rtl model), so they agree on what is compiled and on how a frame is loaded.
 #pragma once
 
-#ifndef __SYNTHESIS__
+#include "hls/pragma.hpp"
+
+#if VOXCAST_HLS_HOST_CODE
 #include <memory>
 #include <string>
 
@@ -14,21 +16,23 @@
 #include "refmodel/error.hpp"
 #include "refmodel/precision/preset_profiles.hpp"
 
-namespace voxcast::hls::host {
+namespace voxcast {
+namespace hls {
+namespace host {
 
 // The profiles the kernels are compiled for: the presets. A profile is a
 // template parameter of every kernel (as a synthesized design fixes its
 // widths), so each one here is one instantiation of the whole pipeline.
-template <PrecisionProfile... Ps>
+template <class... Ps>
 struct ProfileList {};
-using CompiledProfiles = ProfileList<kVizard2, kBalanced, kPrecise>;
+using CompiledProfiles = ProfileList<Vizard2Traits, BalancedTraits, PreciseTraits>;
 inline constexpr const char* kCompiledProfileNames = "the presets vizard2, balanced, precise";
 
-// Calls fn.template operator()<P>() for the compiled profile equal to `p`;
-// false if none is.
-template <class Fn, PrecisionProfile... Ps>
+// Calls fn.template operator()<P>() for the compiled profile (a traits type)
+// equal to `p`; false if none is.
+template <class Fn, class... Ps>
 bool dispatch_profile(const PrecisionProfile& p, Fn&& fn, ProfileList<Ps...>) {
-  return ((p == Ps ? (fn.template operator()<Ps>(), true) : false) || ...);
+  return ((p == profile_value<Ps>() ? (fn.template operator()<Ps>(), true) : false) || ...);
 }
 template <class Fn>
 bool dispatch_profile(const PrecisionProfile& p, Fn&& fn) {
@@ -44,21 +48,28 @@ inline FrameMode frame_mode(ref::RenderMode m) {
   return FrameMode::Shaded;
 }
 
+// The unit set type of a Units value (the C++20 side names unit sets by value).
+template <Units V>
+using UnitsType = UnitSet<V.perspective, V.parallel_origin, V.gradients, V.classification,
+                          V.reflectance_map, V.shader, V.compositor, V.ert, V.mip,
+                          V.space_leaping>;
+
 // Throws voxcast::Error unless a design with units U can render the frame
 // (its camera and render mode; an elaborated top runs only its scene's kind).
-template <Units U>
+template <class U>
 void check_frame_fits(const bittrue::FrameSetup& fs, const std::string& engine) {
-  const bool camera = fs.regs.perspective ? U.perspective : U.parallel_origin;
+  constexpr Units u = units_of<U>();
+  const bool camera = fs.regs.perspective ? u.perspective : u.parallel_origin;
   const ref::RenderMode m = fs.regs.mode;
-  const bool mode = m == ref::RenderMode::Mip        ? can_mip(U)
-                    : m == ref::RenderMode::Unshaded ? can_composite(U)
-                                                     : can_shade(U);
+  const bool mode = m == ref::RenderMode::Mip        ? can_mip(u)
+                    : m == ref::RenderMode::Unshaded ? can_composite(u)
+                                                     : can_shade(u);
   if (!camera || !mode)
     throw Error(engine + ": the design has no " + (camera ? "" : "units for this camera") +
                 (!camera && !mode ? " and no " : "") +
                 (mode ? "" : "path for render.mode = " + std::string(ref::to_string(m))) +
                 " (it was elaborated for another scene)");
-  if (fs.regs.mode != ref::RenderMode::Mip && !U.ert && fs.regs.ert_enabled)
+  if (fs.regs.mode != ref::RenderMode::Mip && !u.ert && fs.regs.ert_enabled)
     throw Error(engine + ": the design has no ERT comparator, the frame asks for "
                 "render.ert_threshold < 1 (it was elaborated for another scene)");
 }
@@ -67,20 +78,20 @@ void check_frame_fits(const bittrue::FrameSetup& fs, const std::string& engine) 
 // (megabytes for the wide profiles: on the heap), for a design with units U
 // (hls/units.hpp): an absent unit's table is not loaded. `engine` names the
 // caller in errors.
-template <PrecisionProfile P, Units U = kAllUnits>
+template <class P, class U = AllUnits>
 std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs,
                                                    const std::string& engine) {
   check_frame_fits<U>(fs, engine);
   auto f = std::make_unique<FrameState<P, U>>();
   f->geometry = load_geometry_registers<P>(fs.regs);
-  if constexpr (U.perspective) {
+  if constexpr (U::perspective) {
     if (fs.regs.perspective) load_rsqrt_rom<P>(fs.rsqrt_seed, f->rsqrt);
   }
-  if constexpr (U.classification) {
+  if constexpr (U::classification) {
     if (!load_class_table<P>(f->class_table, fs.class_table))
       throw Error(engine + ": classification table size does not match the profile");
   }
-  if constexpr (U.reflectance_map) {
+  if constexpr (U::reflectance_map) {
     f->reflectance_regs = reflectance_registers<P>(fs.regs);
     if (fs.regs.mode == ref::RenderMode::Shaded &&
         !load_reflectance_map<P>(f->reflectance, fs.rm_diffuse, fs.rm_specular))
@@ -88,7 +99,7 @@ std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs
   }
   f->compositor = compositor_registers<P>(fs.regs);
   f->mode = frame_mode(fs.regs.mode);
-  if constexpr (U.space_leaping) {
+  if constexpr (U::space_leaping) {
     if (fs.leap) load_leap<P>(*fs.leap, f->leap, f->minmax, engine);
   } else if (fs.leap) {
     throw Error(engine + ": the design has no space-leaping unit, the frame asks for "
@@ -97,5 +108,7 @@ std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs
   return f;
 }
 
-}  // namespace voxcast::hls::host
+}  // namespace host
+}  // namespace hls
+}  // namespace voxcast
 #endif

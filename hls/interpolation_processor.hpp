@@ -21,27 +21,27 @@
 #include "hls/geometry_processor.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
-#include "refmodel/precision/profile.hpp"
 
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
 // vb = value_bits, gb = gradient_bits, gfb = gradient_frac_bits, wb =
 // weight_bits, sf = sample_frac_bits; a, pf as in GeometryParams.
-template <PrecisionProfile P>
+template <class P>
 struct InterpolationParams {
   using G = GeometryParams<P>;
-  static constexpr int a = P.addr_bits;
-  static constexpr int pf = P.pos_frac_bits;
-  static constexpr int vb = P.value_bits;
-  static constexpr int gb = P.gradient_bits;
-  static constexpr int gfb = P.gradient_frac_bits;
-  static constexpr int wb = P.weight_bits;
-  static constexpr int sf = P.sample_frac_bits;
+  static constexpr int a = P::addr_bits;
+  static constexpr int pf = P::pos_frac_bits;
+  static constexpr int vb = P::value_bits;
+  static constexpr int gb = P::gradient_bits;
+  static constexpr int gfb = P::gradient_frac_bits;
+  static constexpr int wb = P::weight_bits;
+  static constexpr int sf = P::sample_frac_bits;
   static constexpr int banks = 8;
   // Integer bits (sign included) of a stored gradient component.
   static constexpr int grad_int_bits = gb - gfb;
@@ -76,19 +76,19 @@ struct InterpolationParams {
 };
 
 // ---- 2. Voxel words and bank views ------------------------------------------------------------
-template <PrecisionProfile P>
+template <class P>
 struct VoxelWordFx {
   typename InterpolationParams<P>::voxel_value_t value;
   typename InterpolationParams<P>::voxel_grad_t g[3];
 };
 
 // §3.4 packed layout: value in [vb-1:0], component c in [vb+(c+1)gb-1 : vb+c·gb].
-template <PrecisionProfile P>
+template <class P>
 VoxelWordFx<P> unpack_voxel_word(const typename InterpolationParams<P>::packed_word_t& w) {
   using I = InterpolationParams<P>;
   VoxelWordFx<P> v;
   v.value.range(I::vb - 1, 0) = w.range(I::vb - 1, 0).to_uint64();
-  [[maybe_unused]] unpack_loop : for (int c = 0; c < 3; ++c) {
+  [[gnu::unused]] unpack_loop : for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename I::packed_word_t field = w >> (I::vb + c * I::gb);
     v.g[c].range(I::gb - 1, 0) = field.range(I::gb - 1, 0).to_uint64();
@@ -96,12 +96,12 @@ VoxelWordFx<P> unpack_voxel_word(const typename InterpolationParams<P>::packed_w
   return v;
 }
 
-template <PrecisionProfile P>
+template <class P>
 typename InterpolationParams<P>::packed_word_t pack_voxel_word(const VoxelWordFx<P>& v) {
   using I = InterpolationParams<P>;
   typename I::packed_word_t w = 0;
   w.range(I::vb - 1, 0) = v.value.range(I::vb - 1, 0).to_uint64();
-  [[maybe_unused]] pack_loop : for (int c = 0; c < 3; ++c) {
+  [[gnu::unused]] pack_loop : for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename I::packed_word_t field = 0;
     field.range(I::gb - 1, 0) = v.g[c].range(I::gb - 1, 0).to_uint64();
@@ -111,7 +111,7 @@ typename InterpolationParams<P>::packed_word_t pack_voxel_word(const VoxelWordFx
 }
 
 // The top level's voxel memory: 8 banks of packed words (one port each).
-template <PrecisionProfile P>
+template <class P>
 struct PackedBanks {
   const typename InterpolationParams<P>::packed_word_t* bank[8];
   VoxelWordFx<P> read(int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
@@ -123,7 +123,7 @@ struct PackedBanks {
 
 // §3.1-3.3: one access to the 8 banks. Bank b is read at word addr[b]; the
 // voxel at offset (dx, dy, dz) from i0 is in bank (dx,dy,dz) ^ parity.
-template <PrecisionProfile P>
+template <class P>
 struct BankAccess {
   typename InterpolationParams<P>::word_addr_t addr[8];
   typename InterpolationParams<P>::weight_t fq[3];  // w1 per axis (w0 = 1 - fq)
@@ -133,7 +133,7 @@ struct BankAccess {
 // §3.1-3.2 along axis k: the position clamped into [LO, HI] (cp) and the
 // cell's base voxel i0 = min(floor(cp), dim - 2) (0 if dim = 1). Space leaping
 // (hls/space_leaping_unit.hpp) finds a sample's block from the same i0.
-template <PrecisionProfile P>
+template <class P>
 typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
                                                 const typename GeometryParams<P>::pos_t& pk, int k,
                                                 typename InterpolationParams<P>::cpos_t& cp) {
@@ -149,7 +149,7 @@ typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
   return i0;
 }
 
-template <PrecisionProfile P>
+template <class P>
 BankAccess<P> address_generator(const GeometryRegisters<P>& r,
                                 const typename GeometryParams<P>::pos_t p[3]) {
   using G = GeometryParams<P>;
@@ -158,7 +158,7 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
   typename G::coord_t half[3];  // i0 >> 1
   bool odd[3];                  // i0 & 1
   acc.parity = 0;
-  [[maybe_unused]] axis_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] axis_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename I::cpos_t cp;
     const typename G::coord_t i0 = sample_cell<P>(r, p[k], k, cp);  // §3.1-3.2
@@ -179,7 +179,7 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
   const word_addr_t inc_x = odd[0] ? word_addr_t(1) : zero;
   const word_addr_t inc_y = odd[1] ? word_addr_t(r.HX) : zero;
   const word_addr_t inc_z = odd[2] ? word_addr_t(r.HXY) : zero;
-  [[maybe_unused]] bank_loop : for (int b = 0; b < 8; ++b) {
+  [[gnu::unused]] bank_loop : for (int b = 0; b < 8; ++b) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     word_addr_t addr = base;
     if ((b & 1) == 0) addr += inc_x;
@@ -192,9 +192,9 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
 
 // The bank reads and the crossbar: corner j = dx | dy<<1 | dz<<2 is the word
 // of bank j ^ parity (read at that bank's address).
-template <PrecisionProfile P, class Banks>
+template <class P, class Banks>
 void gather(const Banks& banks, const BankAccess<P>& acc, VoxelWordFx<P> corner[8]) {
-  [[maybe_unused]] crossbar_loop : for (int j = 0; j < 8; ++j) {
+  [[gnu::unused]] crossbar_loop : for (int j = 0; j < 8; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const int b = static_cast<int>(static_cast<unsigned>(j) ^ acc.parity);
     corner[j] = banks.read(b, acc.addr[b]);
@@ -202,7 +202,7 @@ void gather(const Banks& banks, const BankAccess<P>& acc, VoxelWordFx<P> corner[
 }
 
 // An interpolated sample (§3.5): value vb.sf unsigned, gradient (index space).
-template <PrecisionProfile P>
+template <class P>
 struct Sample {
   typename InterpolationParams<P>::value_t value;
   typename InterpolationParams<P>::gradient_t g[3];
@@ -211,28 +211,28 @@ struct Sample {
 // §3.5: trilinear interpolation, exact, then one Q_RND to sf per channel. The
 // exact sum is evaluated as three rounds of exact lerps v0 + (v1 - v0)·fq
 // (= v0·w0 + v1·w1); any exact order gives the same bits.
-template <PrecisionProfile P>
+template <class P>
 Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
                                   const typename InterpolationParams<P>::weight_t fq[3]) {
   using I = InterpolationParams<P>;
   typename I::vlerp1_t v1[4];
   typename I::glerp1_t g1[3][4];
-  [[maybe_unused]] x_loop : for (int j = 0; j < 4; ++j) {
+  [[gnu::unused]] x_loop : for (int j = 0; j < 4; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const VoxelWordFx<P>& c0 = corner[2 * j];
     const VoxelWordFx<P>& c1 = corner[2 * j + 1];
     v1[j] = c0.value + (c1.value - c0.value) * fq[0];
-    [[maybe_unused]] x_grad_loop : for (int c = 0; c < 3; ++c) {
+    [[gnu::unused]] x_grad_loop : for (int c = 0; c < 3; ++c) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       g1[c][j] = c0.g[c] + (c1.g[c] - c0.g[c]) * fq[0];
     }
   }
   typename I::vlerp2_t v2[2];
   typename I::glerp2_t g2[3][2];
-  [[maybe_unused]] y_loop : for (int j = 0; j < 2; ++j) {
+  [[gnu::unused]] y_loop : for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     v2[j] = v1[2 * j] + (v1[2 * j + 1] - v1[2 * j]) * fq[1];
-    [[maybe_unused]] y_grad_loop : for (int c = 0; c < 3; ++c) {
+    [[gnu::unused]] y_grad_loop : for (int c = 0; c < 3; ++c) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       g2[c][j] = g1[c][2 * j] + (g1[c][2 * j + 1] - g1[c][2 * j]) * fq[1];
     }
@@ -241,7 +241,7 @@ Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
   const typename I::vlerp3_t v3 = v2[0] + (v2[1] - v2[0]) * fq[2];
   const typename I::value_rnd_t vr = v3;  // Q_RND(·, sf)
   s.value = vr;
-  [[maybe_unused]] z_loop : for (int c = 0; c < 3; ++c) {
+  [[gnu::unused]] z_loop : for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename I::glerp3_t g3 = g2[c][0] + (g2[c][1] - g2[c][0]) * fq[2];
     const typename I::gradient_rnd_t gr = g3;  // Q_RND(·, sf)
@@ -251,7 +251,7 @@ Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
 }
 
 // §3: the whole unit for one sample position.
-template <PrecisionProfile P, class Banks>
+template <class P, class Banks>
 Sample<P> interpolate(const GeometryRegisters<P>& r, const Banks& banks,
                       const typename GeometryParams<P>::pos_t p[3]) {
   const BankAccess<P> acc = address_generator<P>(r, p);
@@ -265,13 +265,13 @@ Sample<P> interpolate(const GeometryRegisters<P>& r, const Banks& banks,
 // shading, compositing) and returns false to end the ray early (early ray
 // termination). The trip count is the ray's n (at most about sqrt(3)·2^a / step;
 // the pragma gives a 256^3 volume at one sample per voxel).
-template <PrecisionProfile P, class Banks, class Sink>
+template <class P, class Banks, class Sink>
 void march_ray(const GeometryRegisters<P>& r, const Banks& banks, const RaySetup<P>& ray,
                Sink& sink) {
   using G = GeometryParams<P>;
   typename G::pos_t p[3] = {ray.p0[0], ray.p0[1], ray.p0[2]};
   const std::uint64_t n = ray.n.to_uint64();
-  [[maybe_unused]] sample_loop : for (std::uint64_t k = 0; k < n; ++k) {
+  [[gnu::unused]] sample_loop : for (std::uint64_t k = 0; k < n; ++k) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 444 avg = 256)
     const Sample<P> s = interpolate<P>(r, banks, p);
@@ -281,15 +281,15 @@ void march_ray(const GeometryRegisters<P>& r, const Banks& banks, const RaySetup
 }
 
 // ---- Host side: a bank view on bittrue::VoxelMemory (simulation only) ------------------------
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 namespace host {
 
-template <PrecisionProfile P>
+template <class P>
 struct BitTrueBanks {
   const bittrue::VoxelWord* bank[8];
 
   explicit BitTrueBanks(const bittrue::VoxelMemory& mem) {
-    [[maybe_unused]] bank_ptr_loop : for (int b = 0; b < 8; ++b) bank[b] =
+    [[gnu::unused]] bank_ptr_loop : for (int b = 0; b < 8; ++b) bank[b] =
                                          mem.banks[static_cast<std::size_t>(b)].data();
   }
   VoxelWordFx<P> read(int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
@@ -297,7 +297,7 @@ struct BitTrueBanks {
     const bittrue::VoxelWord& w = bank[b][addr.to_uint64()];
     VoxelWordFx<P> v;
     v.value = w.value;
-    [[maybe_unused]] field_loop : for (int c = 0; c < 3; ++c) {
+    [[gnu::unused]] field_loop : for (int c = 0; c < 3; ++c) {
       // The raw component as an integer, then moved below the binary point
       // (exact: the shift drops only the gfb zero fraction bits of t).
       const int_t<I::gb> raw = w.gradient[static_cast<std::size_t>(c)];
@@ -312,4 +312,5 @@ struct BitTrueBanks {
 }  // namespace host
 #endif
 
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast

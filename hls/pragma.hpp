@@ -1,10 +1,25 @@
+// What a vendor HLS tool sees of the design.
+//
 // VOXCAST_HLS_PRAGMA(HLS ...): a vendor HLS pragma, emitted only when a
 // synthesis tool compiles the design (__SYNTHESIS__); the host compiler would
 // warn about an unknown #pragma.
+//
+// VOXCAST_HLS_HOST_CODE: 1 where the host side of each unit header (the
+// host:: loaders from the bit-true set-up, which use std::vector, strings,
+// exceptions and C++20) is compiled, 0 where only the kernels are: under
+// __SYNTHESIS__, and under VOXCAST_HLS_KERNELS_ONLY, which a C simulation
+// passes (Xilinx's simulation headers refuse __SYNTHESIS__, and a csim
+// testbench is compiled as C++14 like the design; docs/synthesis.md).
 #pragma once
 
 #if defined(__SYNTHESIS__)
 #define VOXCAST_HLS_PRAGMA(x) _Pragma(#x)
 #else
 #define VOXCAST_HLS_PRAGMA(x)
+#endif
+
+#if defined(__SYNTHESIS__) || defined(VOXCAST_HLS_KERNELS_ONLY)
+#define VOXCAST_HLS_HOST_CODE 0
+#else
+#define VOXCAST_HLS_HOST_CODE 1
 #endif

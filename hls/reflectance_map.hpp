@@ -14,50 +14,53 @@
 //      and the registers. Not synthesized.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
-#include "refmodel/precision/profile.hpp"
+#include "hls/units.hpp"
 
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 #include <vector>
 
 #include "refmodel/bittrue/frame_setup.hpp"
 #endif
 
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
 namespace rm_detail {
-// Bits of an unsigned integer that holds every value 0..n (n >= 0; at least 1).
+// Bits of an unsigned integer that holds every value 0..n (n >= 0; at least 1):
+// C++20's std::bit_width, evaluated at compile time only (widths of types).
 constexpr int bits_for(long long n) {
-  return n < 1 ? 1 : static_cast<int>(std::bit_width(static_cast<unsigned long long>(n)));
+  int b = 1;
+  while (b < 63 && (n >> b) > 0) ++b;  // compile time only: no label (C++14 constexpr)
+  return b;
 }
 }  // namespace rm_detail
 
 // ---- 1. Parameters ------------------------------------------------------------------------
-template <PrecisionProfile P>
+template <class P>
 struct ReflectanceParams {
-  static constexpr int res = P.rm_res;  // cells per cube-face edge
+  static constexpr int res = P::rm_res;  // cells per cube-face edge
   static constexpr int cells = 6 * res * res;
   // §5.5: rm_bilinear reads the entries at the cell's corners, (res + 1)^2 per face;
   // nearest mode (VIZARD II) one entry per cell.
-  static constexpr bool bilinear = P.rm_bilinear != 0;
+  static constexpr bool bilinear = P::rm_bilinear != 0;
   static constexpr int side = bilinear ? res + 1 : res;  // entries per face row
   static constexpr int entries = 6 * side * side;        // per table
   // Fraction bits of the in-cell position (0 in nearest mode: the division gives the cell).
-  static constexpr int wb = bilinear ? P.rm_weight_bits : 0;
-  static constexpr int sf = P.sample_frac_bits;
-  static constexpr int df = P.dir_frac_bits;
+  static constexpr int wb = bilinear ? P::rm_weight_bits : 0;
+  static constexpr int sf = P::sample_frac_bits;
+  static constexpr int df = P::dir_frac_bits;
 
   // Interpolated gradient component (§3.5), the interpolation unit's format: the
   // stored field has gradient_bits - gradient_frac_bits integer bits (sign
   // included); one more when sf < gradient_frac_bits, where rounding to sf bits can
   // carry the largest stored value up to 2^(gradient_bits - gradient_frac_bits - 1).
   static constexpr int grad_int_bits =
-      P.gradient_bits - P.gradient_frac_bits + (sf < P.gradient_frac_bits ? 1 : 0);
+      P::gradient_bits - P::gradient_frac_bits + (sf < P::gradient_frac_bits ? 1 : 0);
   using gradient_t = fixed<grad_int_bits + sf, grad_int_bits>;
   // IS[a] = Q_RND(1/world_scale[a], df) <= 1 (§5.1).
   using scale_t = ufixed<df + 1, 1>;
@@ -86,8 +89,8 @@ struct ReflectanceParams {
   using weight_t = ufixed<wb + 1, 1>;
 
   // Table entries (§5.4): rm_int_bits.rm_frac_bits unsigned.
-  static constexpr int ri = P.rm_int_bits;
-  static constexpr int entry_bits = ri + P.rm_frac_bits;
+  static constexpr int ri = P::rm_int_bits;
+  static constexpr int entry_bits = ri + P::rm_frac_bits;
   using entry_t = ufixed<entry_bits, ri>;
   // §5.5's exact blend, as lerps e0 + (e1 - e0)·f: a convex combination of entries stays in
   // the entries' range with wb more fraction bits per lerp; the result rounds once (RND).
@@ -108,7 +111,7 @@ struct ReflectanceParams {
 // ---- 2. The unit ----------------------------------------------------------------------------
 
 // The per-frame registers of the unit (§0): 1/world_scale per axis.
-template <PrecisionProfile P>
+template <class P>
 struct ReflectanceRegisters {
   typename ReflectanceParams<P>::scale_t IS[3];
 };
@@ -130,7 +133,7 @@ struct ReflectanceRegisters {
 // one cycle behind a 4x4 crossbar (in Vitis: the table declared as
 // [6][rm_res+1][rm_res+1] with `ARRAY_PARTITION cyclic factor=2` on the last two
 // dimensions). The C model keeps the flat array the host loads.
-template <PrecisionProfile P>
+template <class P>
 struct ReflectanceMap {
   typename ReflectanceParams<P>::entry_t diffuse[ReflectanceParams<P>::entries];
   typename ReflectanceParams<P>::entry_t specular[ReflectanceParams<P>::entries];
@@ -139,7 +142,7 @@ struct ReflectanceMap {
 // The cube-map cell of a gradient; valid = false when N = 0 (§5.2). Nearest
 // mode: index is the entry to read. Bilinear mode: index is the cell's corner
 // (i, j), fu and fv its in-cell position (§5.5); 0 in nearest mode.
-template <PrecisionProfile P>
+template <class P>
 struct RmCell {
   bool valid;
   typename ReflectanceParams<P>::index_t index;
@@ -147,14 +150,14 @@ struct RmCell {
 };
 
 // The unit's result: D and S of §5 (both 0 without a normal).
-template <PrecisionProfile P>
+template <class P>
 struct Reflect {
   typename ReflectanceParams<P>::entry_t D, S;
 };
 
 // §5.1-5.3: world scaling, N = -gw, zero test, major axis, the two exact
 // integer divisions and the cell index.
-template <PrecisionProfile P>
+template <class P>
 RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
                   const ReflectanceRegisters<P>& regs) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -167,7 +170,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   magnitude_t mag[3];
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = n complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = mag complete)
-  [[maybe_unused]] rm_world_scale : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] rm_world_scale : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename Params::world_gradient_t gw = g[k] * regs.IS[k];
     n[k] = -gw;
@@ -198,7 +201,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   const int uv_axis[2] = {a, b};
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = cell complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = frac complete)
-  [[maybe_unused]] rm_cell_divide : for (int j = 0; j < 2; ++j) {
+  [[gnu::unused]] rm_cell_divide : for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename Params::offset_t off = n[uv_axis[j]] + mag[m];
     const typename Params::den_t off_raw = off.range().to_uint64();
@@ -219,12 +222,8 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   out.valid = valid;
   out.index = face * typename Params::index_t(side * side) +
               cell[1] * typename Params::index_t(side) + cell[0];
-  out.fu = 0;
-  out.fv = 0;
-  if constexpr (Params::bilinear) {
-    out.fu = frac[0];
-    out.fv = frac[1];
-  }
+  out.fu = Params::bilinear ? frac[0] : typename Params::weight_t(0);
+  out.fv = Params::bilinear ? frac[1] : typename Params::weight_t(0);
   return out;
 }
 
@@ -232,7 +231,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
 // (i+1, j), (i, j+1), (i+1, j+1): exact lerps e0 + (e1 - e0)·fu along u, then
 // along v (= the weighted sum with (1-fu)(1-fv), fu(1-fv), (1-fu)fv, fu·fv; any
 // exact order gives the same bits), one Q_RND to rm_frac_bits.
-template <PrecisionProfile P>
+template <class P>
 typename ReflectanceParams<P>::entry_t rm_bilerp(
     const typename ReflectanceParams<P>::entry_t (&e)[4],
     const typename ReflectanceParams<P>::weight_t& fu,
@@ -241,7 +240,7 @@ typename ReflectanceParams<P>::entry_t rm_bilerp(
   using Params = ReflectanceParams<P>;
   typename Params::lerp1_t l1[2];
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = l1 complete)
-  [[maybe_unused]] rm_lerp_u : for (int j = 0; j < 2; ++j) {
+  [[gnu::unused]] rm_lerp_u : for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     l1[j] = e[2 * j] + (e[2 * j + 1] - e[2 * j]) * fu;
   }
@@ -250,11 +249,41 @@ typename ReflectanceParams<P>::entry_t rm_bilerp(
   return r;
 }
 
+// §5.5: the four corners of the cell, one read per parity bank (see
+// ReflectanceMap), blended; §5: the nearest cell's entries. The mode is the
+// profile's (rm_bilinear), so only one of the two is instantiated.
+template <class P>
+void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell, Reflect<P>& r,
+             Has<true> /*bilinear*/) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  using Params = ReflectanceParams<P>;
+  constexpr unsigned side = static_cast<unsigned>(Params::side);
+  const unsigned offset[4] = {0u, 1u, side, side + 1u};
+  typename Params::entry_t d[4], s[4];
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = d complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = s complete)
+  [[gnu::unused]] rm_corner_read : for (int c = 0; c < 4; ++c) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    const unsigned k = cell.index.to_uint() + offset[c];
+    d[c] = map.diffuse[k];
+    s[c] = map.specular[k];
+  }
+  r.D = rm_bilerp<P>(d, cell.fu, cell.fv);
+  r.S = rm_bilerp<P>(s, cell.fu, cell.fv);
+}
+template <class P>
+void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell, Reflect<P>& r,
+             Has<false> /*bilinear*/) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  r.D = map.diffuse[cell.index.to_uint()];
+  r.S = map.specular[cell.index.to_uint()];
+}
+
 // §5: the table reads (D = S = 0 without a normal): one per table in nearest
 // mode, four and a blend in bilinear mode. G is the interpolation unit's
 // gradient component type; it converts exactly into gradient_t when it has
 // sample_frac_bits fraction bits (checked below) and fits.
-template <PrecisionProfile P, class G>
+template <class P, class G>
 Reflect<P> reflect(const ReflectanceMap<P>& map, const ReflectanceRegisters<P>& regs,
                    const G (&g)[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -266,45 +295,25 @@ Reflect<P> reflect(const ReflectanceMap<P>& map, const ReflectanceRegisters<P>& 
   Reflect<P> r;
   r.D = 0;
   r.S = 0;
-  if (cell.valid) {
-    if constexpr (Params::bilinear) {
-      // The four corners of the cell: one read per parity bank (see ReflectanceMap).
-      constexpr unsigned side = static_cast<unsigned>(Params::side);
-      const unsigned offset[4] = {0u, 1u, side, side + 1u};
-      typename Params::entry_t d[4], s[4];
-      VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = d complete)
-      VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = s complete)
-      [[maybe_unused]] rm_corner_read : for (int c = 0; c < 4; ++c) {
-        VOXCAST_HLS_PRAGMA(HLS UNROLL)
-        const unsigned k = cell.index.to_uint() + offset[c];
-        d[c] = map.diffuse[k];
-        s[c] = map.specular[k];
-      }
-      r.D = rm_bilerp<P>(d, cell.fu, cell.fv);
-      r.S = rm_bilerp<P>(s, cell.fu, cell.fv);
-    } else {
-      r.D = map.diffuse[cell.index.to_uint()];
-      r.S = map.specular[cell.index.to_uint()];
-    }
-  }
+  if (cell.valid) rm_read<P>(map, cell, r, Has<Params::bilinear>{});
   return r;
 }
 
 // ---- 3. Host side (not synthesized) -------------------------------------------------------
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 namespace host {
 
 // Loads both tables from bittrue::make_reflectance_maps' raw integers (cell
 // entries, or corner entries in bilinear mode). Returns false (tables
 // unchanged) if a size does not match.
-template <PrecisionProfile P>
+template <class P>
 bool load_reflectance_map(ReflectanceMap<P>& map, const std::vector<std::uint32_t>& diffuse,
                           const std::vector<std::uint32_t>& specular) {
   constexpr int n = ReflectanceParams<P>::entries;
   if (diffuse.size() != static_cast<std::size_t>(n) ||
       specular.size() != static_cast<std::size_t>(n))
     return false;
-  [[maybe_unused]] load_rm_entries : for (int i = 0; i < n; ++i) {
+  [[gnu::unused]] load_rm_entries : for (int i = 0; i < n; ++i) {
     map.diffuse[i].range() = std::uint64_t{diffuse[static_cast<std::size_t>(i)]};
     map.specular[i].range() = std::uint64_t{specular[static_cast<std::size_t>(i)]};
   }
@@ -312,10 +321,10 @@ bool load_reflectance_map(ReflectanceMap<P>& map, const std::vector<std::uint32_
 }
 
 // The IS registers from the frame's raw register values (dir_frac_bits).
-template <PrecisionProfile P>
+template <class P>
 ReflectanceRegisters<P> reflectance_registers(const bittrue::FrameRegisters& regs) {
   ReflectanceRegisters<P> r;
-  [[maybe_unused]] load_is_registers : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] load_is_registers : for (int k = 0; k < 3; ++k) {
     r.IS[k].range() = static_cast<std::uint64_t>(regs.IS[static_cast<std::size_t>(k)]);
   }
   return r;
@@ -323,4 +332,5 @@ ReflectanceRegisters<P> reflectance_registers(const bittrue::FrameRegisters& reg
 
 }  // namespace host
 #endif
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast

@@ -8,38 +8,38 @@
 #include "hls/reflectance_map.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
-#include "refmodel/precision/profile.hpp"
 
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
-template <PrecisionProfile P>
+template <class P>
 struct ShaderParams {
-  static constexpr int shade_bits = P.shade_bits;
+  static constexpr int shade_bits = P::shade_bits;
   // ka + kd·D + ks·S < 1 + 2·2^rm_int_bits (ka, kd, ks < 1; D, S < 2^rm_int_bits):
   // rm_int_bits + 2 integer bits hold it, and its rounding, without saturation.
-  static constexpr int intensity_int_bits = P.rm_int_bits + 2;
+  static constexpr int intensity_int_bits = P::rm_int_bits + 2;
   // The exact sum has k_bits + rm_frac_bits fraction bits.
-  static constexpr int sum_bits = intensity_int_bits + P.k_bits + P.rm_frac_bits;
+  static constexpr int sum_bits = intensity_int_bits + P::k_bits + P::rm_frac_bits;
   // I = Q_RND(·, shade_bits) (§6).
   using intensity_t = ufixed<shade_bits + intensity_int_bits, intensity_int_bits, RND>;
   // c = U(·, shade_bits): one conversion rounds and saturates at 1 - 2^-shade_bits.
   using shade_t = ufixed<shade_bits, 0, RND, SAT>;
   // colour · I, the widest product of the unit.
-  static constexpr int product_bits = P.color_bits + shade_bits + intensity_int_bits;
+  static constexpr int product_bits = P::color_bits + shade_bits + intensity_int_bits;
 
   static_assert(sum_bits <= 64 && product_bits <= 64, "shader products exceed 64 bits");
 };
 
 // The shaded colour of one sample.
-template <PrecisionProfile P>
+template <class P>
 struct ShadedColor {
   typename ShaderParams<P>::shade_t c[3];
 };
 
 // §6: I = Q_RND(ka·1 + kd·D + ks·S, shade_bits); c = U(colour · I, shade_bits) per
 // channel. Unshaded (emission-absorption) mode: c = U(colour, shade_bits).
-template <PrecisionProfile P>
+template <class P>
 ShadedColor<P> shade(const ClassEntry<P>& e, const Reflect<P>& r, bool shaded) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ShaderParams<P>;
@@ -47,7 +47,7 @@ ShadedColor<P> shade(const ClassEntry<P>& e, const Reflect<P>& r, bool shaded) {
   const typename ClassificationParams<P>::color_t colour[3] = {e.r, e.g, e.b};
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = colour complete)
   ShadedColor<P> out;
-  [[maybe_unused]] shade_channels : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] shade_channels : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     if (shaded) {
       out.c[k] = colour[k] * intensity;
@@ -58,4 +58,5 @@ ShadedColor<P> shade(const ClassEntry<P>& e, const Reflect<P>& r, bool shaded) {
   return out;
 }
 
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast

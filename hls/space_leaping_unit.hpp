@@ -33,24 +33,24 @@
 #include "hls/interpolation_processor.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
-#include "refmodel/precision/profile.hpp"
 
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 #include <string>
 
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/error.hpp"
 #endif
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
-template <PrecisionProfile P>
+template <class P>
 struct LeapParams {
   using G = GeometryParams<P>;
-  static constexpr int a = P.addr_bits;
-  static constexpr int vb = P.value_bits;
-  static constexpr int ta = P.tf_addr_bits;
+  static constexpr int a = P::addr_bits;
+  static constexpr int vb = P::value_bits;
+  static constexpr int ta = P::tf_addr_bits;
   static constexpr int entries = 1 << ta;
   // The on-chip block memory: 2^15 blocks (32^3: a 256^3 volume in 8^3 blocks,
   // 512^3 in 16^3) of two vb-bit values, 786 kbit at vb = 12. A volume needing
@@ -71,12 +71,12 @@ struct LeapParams {
   using block_addr_t = uint_t<block_addr_bits>;
   using voxel_value_t = typename InterpolationParams<P>::voxel_value_t;
   // A position plus up to 2^leap_bits steps: |s| < 4.1, so 3 + leap_bits integer bits.
-  using wide_step_t = fixed<P.pos_frac_bits + 4 + leap_bits, 4 + leap_bits>;
-  using wide_pos_t = fixed<P.pos_frac_bits + a + 6 + leap_bits, a + 6 + leap_bits>;
+  using wide_step_t = fixed<P::pos_frac_bits + 4 + leap_bits, 4 + leap_bits>;
+  using wide_pos_t = fixed<P::pos_frac_bits + a + 6 + leap_bits, a + 6 + leap_bits>;
 };
 
 // ---- 2. Registers and memories -------------------------------------------------------------
-template <PrecisionProfile P>
+template <class P>
 struct LeapRegisters {
   using L = LeapParams<P>;
   bool enabled = false;
@@ -87,13 +87,13 @@ struct LeapRegisters {
   typename L::count_t prefix[L::entries + 1];
 };
 
-template <PrecisionProfile P>
+template <class P>
 struct MinMaxEntry {
   typename LeapParams<P>::voxel_value_t lo, hi;
 };
 
 // One single-port RAM, one read per block visited.
-template <PrecisionProfile P>
+template <class P>
 struct MinMaxMemory {
   MinMaxEntry<P> block[LeapParams<P>::max_blocks];
 };
@@ -101,13 +101,13 @@ struct MinMaxMemory {
 // ---- 3. The unit ----------------------------------------------------------------------------
 
 // The block coordinates of the sample at p: i0 >> lb per axis.
-template <PrecisionProfile P>
+template <class P>
 void block_coords(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
                   const typename GeometryParams<P>::pos_t p[3],
                   typename LeapParams<P>::bcoord_t b[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using G = GeometryParams<P>;
-  [[maybe_unused]] block_axis_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] block_axis_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename InterpolationParams<P>::cpos_t cp;
     const typename G::coord_t i0 = sample_cell<P>(r, p[k], k, cp);
@@ -116,7 +116,7 @@ void block_coords(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
 }
 
 // The block memory address of block coordinates b, x fastest.
-template <PrecisionProfile P>
+template <class P>
 typename LeapParams<P>::block_addr_t block_address(const LeapRegisters<P>& lr,
                                                    const typename LeapParams<P>::bcoord_t b[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
@@ -126,7 +126,7 @@ typename LeapParams<P>::block_addr_t block_address(const LeapRegisters<P>& lr,
 }
 
 // Whether every classification entry a value in [e.lo, e.hi] can address has alpha = 0.
-template <PrecisionProfile P>
+template <class P>
 bool block_empty(const LeapRegisters<P>& lr, const MinMaxEntry<P>& e) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using C = ClassificationParams<P>;
@@ -141,7 +141,7 @@ bool block_empty(const LeapRegisters<P>& lr, const MinMaxEntry<P>& e) {
 // block, whose coordinates are b; p is left at the last of them. Greedy binary
 // search over q + 2^j·s (the block's samples are consecutive, see the header):
 // each stage compares block coordinates, no memory read.
-template <PrecisionProfile P>
+template <class P>
 std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
                        typename GeometryParams<P>::pos_t p[3],
                        const typename GeometryParams<P>::step_t s[3], std::uint64_t remaining,
@@ -149,12 +149,12 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
   using G = GeometryParams<P>;
   using L = LeapParams<P>;
   std::uint64_t run = 1;
-  [[maybe_unused]] leap_search_loop : for (int j = L::leap_bits - 1; j >= 0; --j) {
+  [[gnu::unused]] leap_search_loop : for (int j = L::leap_bits - 1; j >= 0; --j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const std::uint64_t add = std::uint64_t{1} << j;
     if (run + add > remaining) continue;  // past the ray's last sample
     typename G::pos_t cand[3];
-    [[maybe_unused]] leap_axis_loop : for (int k = 0; k < 3; ++k) {
+    [[gnu::unused]] leap_axis_loop : for (int k = 0; k < 3; ++k) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       typename L::wide_step_t ws = s[k];
       ws <<= j;  // exact: 2^j·s
@@ -164,7 +164,7 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
     typename L::bcoord_t cb[3];
     block_coords<P>(r, lr, cand, cb);
     if (cb[0] == b[0] && cb[1] == b[1] && cb[2] == b[2]) {
-      [[maybe_unused]] leap_take_loop : for (int k = 0; k < 3; ++k) {
+      [[gnu::unused]] leap_take_loop : for (int k = 0; k < 3; ++k) {
         VOXCAST_HLS_PRAGMA(HLS UNROLL)
         p[k] = cand[k];
       }
@@ -176,7 +176,7 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
 
 // The block look-up of the sample at p: its coordinates (into b) and whether
 // the block is empty (one block-memory read, two prefix-table reads).
-template <PrecisionProfile P>
+template <class P>
 bool sample_block_empty(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
                         const MinMaxMemory<P>& mm, const typename GeometryParams<P>::pos_t p[3],
                         typename LeapParams<P>::bcoord_t b[3]) {
@@ -187,7 +187,7 @@ bool sample_block_empty(const GeometryRegisters<P>& r, const LeapRegisters<P>& l
 // march_ray (hls/interpolation_processor.hpp) with space leaping: per clock
 // either one sample (as march_ray) or one leap over an empty block's samples.
 // `skip(run)` is told each leap's sample count.
-template <PrecisionProfile P, class Banks, class Sink, class Skip>
+template <class P, class Banks, class Sink, class Skip>
 void march_ray_leaping(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
                        const MinMaxMemory<P>& mm, const Banks& banks, const RaySetup<P>& ray,
                        Sink& sink, Skip& skip) {
@@ -195,7 +195,7 @@ void march_ray_leaping(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
   typename G::pos_t p[3] = {ray.p0[0], ray.p0[1], ray.p0[2]};
   const std::uint64_t n = ray.n.to_uint64();
   std::uint64_t k = 0;
-  [[maybe_unused]] leap_sample_loop : while (k < n) {
+  [[gnu::unused]] leap_sample_loop : while (k < n) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 444 avg = 256)
     typename LeapParams<P>::bcoord_t b[3];
@@ -213,13 +213,13 @@ void march_ray_leaping(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
 }
 
 // ---- 4. Host side: loading (not synthesized) ------------------------------------------------
-#ifndef __SYNTHESIS__
+#if VOXCAST_HLS_HOST_CODE
 namespace host {
 
 // Loads the registers and the block memory from the shared set-up; throws
 // voxcast::Error naming `engine` when the volume needs more blocks than the
 // memory holds or the prefix table does not match the profile.
-template <PrecisionProfile P>
+template <class P>
 void load_leap(const bittrue::LeapTables& t, LeapRegisters<P>& lr, MinMaxMemory<P>& mm,
                const std::string& engine) {
   using L = LeapParams<P>;
@@ -246,4 +246,5 @@ void load_leap(const bittrue::LeapTables& t, LeapRegisters<P>& lr, MinMaxMemory<
 }  // namespace host
 #endif
 
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast

@@ -46,24 +46,26 @@
 #include <ap_fixed.h>
 #include <ap_int.h>
 
-namespace voxcast::hls {
+namespace voxcast {
+namespace hls {
 
 using q_mode = ::ap_q_mode;
 using o_mode = ::ap_o_mode;
 
-// Map by name (semantics section 1: same enumerators, same order).
-inline constexpr q_mode RND = AP_RND;
-inline constexpr q_mode RND_ZERO = AP_RND_ZERO;
-inline constexpr q_mode RND_MIN_INF = AP_RND_MIN_INF;
-inline constexpr q_mode RND_INF = AP_RND_INF;
-inline constexpr q_mode RND_CONV = AP_RND_CONV;
-inline constexpr q_mode TRN = AP_TRN;
-inline constexpr q_mode TRN_ZERO = AP_TRN_ZERO;
-inline constexpr o_mode SAT = AP_SAT;
-inline constexpr o_mode SAT_ZERO = AP_SAT_ZERO;
-inline constexpr o_mode SAT_SYM = AP_SAT_SYM;
-inline constexpr o_mode WRAP = AP_WRAP;
-inline constexpr o_mode WRAP_SM = AP_WRAP_SM;
+// Map by name (semantics section 1: same enumerators, same order). Namespace-scope
+// constexpr (internal linkage): C++14 has no inline variables.
+constexpr q_mode RND = AP_RND;
+constexpr q_mode RND_ZERO = AP_RND_ZERO;
+constexpr q_mode RND_MIN_INF = AP_RND_MIN_INF;
+constexpr q_mode RND_INF = AP_RND_INF;
+constexpr q_mode RND_CONV = AP_RND_CONV;
+constexpr q_mode TRN = AP_TRN;
+constexpr q_mode TRN_ZERO = AP_TRN_ZERO;
+constexpr o_mode SAT = AP_SAT;
+constexpr o_mode SAT_ZERO = AP_SAT_ZERO;
+constexpr o_mode SAT_SYM = AP_SAT_SYM;
+constexpr o_mode WRAP = AP_WRAP;
+constexpr o_mode WRAP_SM = AP_WRAP_SM;
 
 template <int W, int I, q_mode Q = TRN, o_mode O = WRAP, int N = 0>
 using fixed = ::ap_fixed<W, I, Q, O, N>;
@@ -74,7 +76,8 @@ using int_t = ::ap_int<W>;
 template <int W>
 using uint_t = ::ap_uint<W>;
 
-}  // namespace voxcast::hls
+}  // namespace hls
+}  // namespace voxcast
 
 #else
 

@@ -1,51 +1,78 @@
 // The top function a vendor HLS tool synthesizes: vizard2_frame_top, at global
 // scope (Vitis HLS takes a plain name for set_top), for one precision profile
-// and one set of units, both fixed at compile time.
+// and one set of units, both fixed at compile time. Layer 2 of the
+// Vitis-Libraries split: the interface pragmas are here, in the top itself
+// (a vendor tool reads INTERFACE pragmas only in the top function).
 //
 // `voxcast synth-script SCENE` writes the scene's elaborated_config.hpp
 // (ref::elaborate: which units the scene needs; cosim/synth_script.hpp) and
 // its Tcl passes it with `-include`, so the top instantiates only those units
 // (hls/units.hpp, docs/synthesis.md): a MIP top has no classification, shader
 // or compositor, a parallel top no direction or rsqrt unit. Without the header
-// the top is the full run-time-configurable design (kAllUnits) for the preset
-// -DVOXCAST_SYNTH_PROFILE=kVizard2 | kBalanced | kPrecise names. CMake
-// compiles this file as the vendor tool sees it (-D__SYNTHESIS__, no
-// exceptions, no RTTI) for each preset (hls/CMakeLists.txt) and for two
-// elaborated scenes (tests/CMakeLists.txt).
+// the top is the full run-time-configurable design (AllUnits) for the preset
+// -DVOXCAST_SYNTH_PROFILE=Vizard2Traits | BalancedTraits | PreciseTraits
+// names. C++14, as the vendor front ends read it; CMake compiles this file as
+// the vendor tool sees it (-D__SYNTHESIS__, no exceptions, no RTTI, g++ and
+// clang++ -std=c++14, on voxcast's types and on Xilinx's and Catapult's) for
+// each preset (hls/CMakeLists.txt) and for two elaborated scenes
+// (tests/CMakeLists.txt), and tools/synth_lint checks it.
 #include <cstdint>
+#include <type_traits>
 
+#include "hls/pragma.hpp"
 #include "hls/units.hpp"
 #include "hls/vizard2_top.hpp"
-#include "refmodel/precision/preset_profiles.hpp"
+#include "refmodel/precision/profile_traits.hpp"
 
 namespace {
 #ifdef VOXCAST_ELABORATED_CONFIG  // elaborated_config.hpp, passed with -include
-constexpr voxcast::PrecisionProfile kTopProfile = voxcast::elaborated::kProfile;
-constexpr voxcast::hls::Units kTopUnits = voxcast::elaborated::kUnits;
+using TopProfile = voxcast::elaborated::Profile;
+using TopUnits = voxcast::elaborated::Units;
 #ifdef VOXCAST_SYNTH_PROFILE
-static_assert(kTopProfile == voxcast::VOXCAST_SYNTH_PROFILE,
+static_assert(std::is_same<TopProfile, voxcast::VOXCAST_SYNTH_PROFILE>::value,
               "elaborated_config.hpp was written for another precision profile");
 #endif
 // The sizes the elaboration derived from the data fit the profile's fields.
-static_assert(voxcast::elaborated::kValueStoreBits <= kTopProfile.value_bits);
-static_assert(voxcast::elaborated::kGradientStoreBits <= kTopProfile.gradient_bits);
-static_assert(voxcast::elaborated::kClassEntries <= (1 << kTopProfile.tf_addr_bits));
+static_assert(voxcast::elaborated::kValueStoreBits <= TopProfile::value_bits,
+              "the volume's values do not fit the profile's value field");
+static_assert(voxcast::elaborated::kGradientStoreBits <= TopProfile::gradient_bits,
+              "the gradients do not fit the profile's gradient field");
+static_assert(voxcast::elaborated::kClassEntries <= (1 << TopProfile::tf_addr_bits),
+              "the transfer function needs more classification entries than the profile has");
 #else
 #ifndef VOXCAST_SYNTH_PROFILE
-#error "define VOXCAST_SYNTH_PROFILE as one of kVizard2, kBalanced, kPrecise, or -include elaborated_config.hpp"
+#error "define VOXCAST_SYNTH_PROFILE as one of Vizard2Traits, BalancedTraits, PreciseTraits, or -include elaborated_config.hpp"
 #endif
-constexpr voxcast::PrecisionProfile kTopProfile = voxcast::VOXCAST_SYNTH_PROFILE;
-constexpr voxcast::hls::Units kTopUnits = voxcast::hls::kAllUnits;
+using TopProfile = voxcast::VOXCAST_SYNTH_PROFILE;
+using TopUnits = voxcast::hls::AllUnits;
 #endif
-using Word = voxcast::hls::InterpolationParams<kTopProfile>::packed_word_t;
+using Word = voxcast::hls::InterpolationParams<TopProfile>::packed_word_t;
+using Frame = voxcast::hls::FrameState<TopProfile, TopUnits>;
+using Pixel = voxcast::hls::OutputPixel<TopProfile>;
 }  // namespace
 
-void vizard2_frame_top(const voxcast::hls::FrameState<kTopProfile, kTopUnits>* frame,
-                       const Word* bank0, const Word* bank1, const Word* bank2, const Word* bank3,
-                       const Word* bank4, const Word* bank5, const Word* bank6, const Word* bank7,
-                       int width, int height, voxcast::hls::OutputPixel<kTopProfile>* fb,
+// The frame state and the 8 voxel banks in external memory (one AXI master
+// each, two banks per DIMM channel of the card), the frame buffer and the
+// sample count out; width, height and start on the AXI-lite control port.
+void vizard2_frame_top(const Frame* frame, const Word* bank0, const Word* bank1,
+                       const Word* bank2, const Word* bank3, const Word* bank4, const Word* bank5,
+                       const Word* bank6, const Word* bank7, int width, int height, Pixel* fb,
                        std::uint64_t* samples) {
-  voxcast::hls::vizard2_frame<kTopProfile, kTopUnits>(frame, bank0, bank1, bank2, bank3, bank4,
-                                                      bank5, bank6, bank7, width, height, fb,
-                                                      samples);
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE s_axilite port = width)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE s_axilite port = height)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE s_axilite port = return)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = frame offset = slave bundle = gmem_frame)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank0 offset = slave bundle = dimm0)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank1 offset = slave bundle = dimm0)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank2 offset = slave bundle = dimm1)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank3 offset = slave bundle = dimm1)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank4 offset = slave bundle = dimm2)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank5 offset = slave bundle = dimm2)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank6 offset = slave bundle = dimm3)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank7 offset = slave bundle = dimm3)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = fb offset = slave bundle = gmem_fb)
+  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = samples offset = slave bundle = gmem_fb)
+  const voxcast::hls::PackedBanks<TopProfile> banks{
+      {bank0, bank1, bank2, bank3, bank4, bank5, bank6, bank7}};
+  voxcast::hls::render_rows<TopProfile, TopUnits>(*frame, banks, width, 0, height, fb, samples);
 }

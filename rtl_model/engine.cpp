@@ -13,7 +13,7 @@
 namespace voxcast::rtl {
 namespace {
 
-template <PrecisionProfile P>
+template <class P>
 RtlResult render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
                  const RtlConfig& config, const trace::TraceOptions* trace) {
   if (memory.dims != fs.regs.dims) throw Error("rtl engine: voxel memory and frame set-up differ in dims");
@@ -54,7 +54,7 @@ RtlConfig vizard2_baseline() {
 RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
                      const RtlConfig& config, const trace::TraceOptions* trace) {
   RtlResult r;
-  const auto run = [&]<PrecisionProfile P>() { r = render<P>(setup, memory, config, trace); };
+  const auto run = [&]<class P>() { r = render<P>(setup, memory, config, trace); };
   if (!hls::host::dispatch_profile(setup.profile, run))
     throw Error(std::string("this precision profile is not compiled into the rtl engine (") +
                 hls::host::kCompiledProfileNames + ")");
@@ -62,7 +62,7 @@ RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemor
 }
 
 bool rtl_supports(const PrecisionProfile& p) {
-  return hls::host::dispatch_profile(p, []<PrecisionProfile>() {});
+  return hls::host::dispatch_profile(p, []<class>() {});
 }
 
 std::string rtl_supported_profiles() { return hls::host::kCompiledProfileNames; }

@@ -8,9 +8,11 @@
 #include "hls/pragma.hpp"
 #include "hls/virim/params.hpp"
 
-namespace voxcast::hls::virim {
+namespace voxcast {
+namespace hls {
+namespace virim {
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct GeometryRegisters {
   using V = VirimParams<HP>;
   typename V::matrix_t M[3][3];              // R^T / zoom
@@ -24,13 +26,13 @@ struct GeometryRegisters {
 // nearest of the 2^wb mask offsets; a fraction that rounds up to 1 carries
 // into the integer part, the paper's "distance = 1 handled separately"), its
 // integer part (the 2x2x2 neighbourhood's lower corner) and the ROM address.
-template <HeidelbergProfile HP>
+template <class HP>
 struct Address {
   typename VirimParams<HP>::coord_t x0[3];
-  uint_t<HP.weight_bits> q[3];
+  uint_t<HP::weight_bits> q[3];
 };
 
-template <HeidelbergProfile HP>
+template <class HP>
 void data_position(const GeometryRegisters<HP>& g, int i, int j, int k,
                    typename VirimParams<HP>::pos_t p[3]) {
   using V = VirimParams<HP>;
@@ -39,19 +41,19 @@ void data_position(const GeometryRegisters<HP>& g, int i, int j, int k,
   const typename V::scale_t s = g.scale[j];
   const auto ux = ox * s;
   const auto uz = oz * s;
-  [[maybe_unused]] position_loop : for (int r = 0; r < 3; ++r) {
+  [[gnu::unused]] position_loop : for (int r = 0; r < 3; ++r) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     p[r] = g.base[r] + g.M[r][0] * ux + g.M[r][1] * oy + g.M[r][2] * uz;
   }
 }
 
-template <HeidelbergProfile HP>
+template <class HP>
 Address<HP> geometry_processor(const GeometryRegisters<HP>& g, int i, int j, int k) {
   using V = VirimParams<HP>;
   typename V::pos_t p[3];
   data_position<HP>(g, i, j, k, p);
   Address<HP> a;
-  [[maybe_unused]] address_loop : for (int r = 0; r < 3; ++r) {
+  [[gnu::unused]] address_loop : for (int r = 0; r < 3; ++r) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename V::rom_pos_t pr = p[r];
     const typename V::floor_t fl = pr;
@@ -62,4 +64,6 @@ Address<HP> geometry_processor(const GeometryRegisters<HP>& g, int i, int j, int
   return a;
 }
 
-}  // namespace voxcast::hls::virim
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast

@@ -9,16 +9,18 @@
 #include "hls/pragma.hpp"
 #include "hls/virim/params.hpp"
 
-namespace voxcast::hls::virim {
+namespace voxcast {
+namespace hls {
+namespace virim {
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct BusWord {
   typename VirimParams<HP>::density_t density;
   typename VirimParams<HP>::grad_t gx, gy;
 };
 
 // Bus layout: density in [db-1:0], gx in [db+gb-1:db], gy in [db+2gb-1:db+gb].
-template <HeidelbergProfile HP>
+template <class HP>
 typename VirimParams<HP>::bus_t pack_bus_word(const BusWord<HP>& w) {
   using V = VirimParams<HP>;
   typename V::bus_t b = 0;
@@ -28,7 +30,7 @@ typename VirimParams<HP>::bus_t pack_bus_word(const BusWord<HP>& w) {
   return b;
 }
 
-template <HeidelbergProfile HP>
+template <class HP>
 BusWord<HP> unpack_bus_word(const typename VirimParams<HP>::bus_t& b) {
   using V = VirimParams<HP>;
   BusWord<HP> w;
@@ -40,7 +42,7 @@ BusWord<HP> unpack_bus_word(const typename VirimParams<HP>::bus_t& b) {
 
 // The bus word of voxel x of row `row`; `above` (y - 1) and `below` (y + 1)
 // are null at the view cube's first and last row.
-template <HeidelbergProfile HP>
+template <class HP>
 BusWord<HP> gradient_processor(const typename VirimParams<HP>::density_t* above,
                                const typename VirimParams<HP>::density_t* row,
                                const typename VirimParams<HP>::density_t* below, int x, int W) {
@@ -49,7 +51,7 @@ BusWord<HP> gradient_processor(const typename VirimParams<HP>::density_t* above,
   const d_t* rows[3] = {above, row, below};
   // Sums of +-1, +-2 times densities < 1: |.| < 4, exact at db fraction bits.
   fixed<V::db + 4, 4> sx = 0, sy = 0;
-  [[maybe_unused]] sobel_loop : for (int d = 0; d < 3; ++d) {
+  [[gnu::unused]] sobel_loop : for (int d = 0; d < 3; ++d) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const int w = d == 1 ? 2 : 1;
     const d_t* r = rows[d];
@@ -71,4 +73,6 @@ BusWord<HP> gradient_processor(const typename VirimParams<HP>::density_t* above,
   return out;
 }
 
-}  // namespace voxcast::hls::virim
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast

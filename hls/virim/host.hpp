@@ -4,23 +4,29 @@
 // read one set of numbers.
 #pragma once
 
-#ifndef __SYNTHESIS__
+#include "hls/pragma.hpp"
+
+#if VOXCAST_HLS_HOST_CODE
 #include <memory>
 #include <string>
 
 #include "hls/virim/virim_top.hpp"
 #include "refmodel/bittrue/heidelberg.hpp"
 #include "refmodel/error.hpp"
+#include "refmodel/precision/preset_profiles.hpp"
 
-namespace voxcast::hls::virim::host {
+namespace voxcast {
+namespace hls {
+namespace virim {
+namespace host {
 
 inline constexpr const char* kCompiledHeidelbergProfiles =
     "VIRIM's (6-bit weight addressing, heidelberg.weight_bits = 6)";
 
 template <class Fn>
 bool dispatch_heidelberg_profile(const HeidelbergProfile& p, Fn&& fn) {
-  if (p == kVirimProfile) {
-    fn.template operator()<kVirimProfile>();
+  if (p == heidelberg_value<VirimTraits>()) {
+    fn.template operator()<VirimTraits>();
     return true;
   }
   return false;
@@ -32,7 +38,7 @@ T on_grid(double v) {
   return t;
 }
 
-template <HeidelbergProfile HP>
+template <class HP>
 std::unique_ptr<VirimFrame<HP>> load_virim_frame(const bittrue::VirimSetup& s) {
   using V = VirimParams<HP>;
   if (s.rom.size() != static_cast<std::size_t>(V::rom_entries) * 8 ||
@@ -66,7 +72,7 @@ std::unique_ptr<VirimFrame<HP>> load_virim_frame(const bittrue::VirimSetup& s) {
   sr.ws45 = on_grid<typename V::uweight_t>(s.ws45);
   sr.wlum = on_grid<typename V::uweight_t>(s.wlum);
   sr.threshold = on_grid<typename V::light_t>(s.threshold);
-  sr.inv_sqrt2 = on_grid<typename V::ucos_t>(bittrue::inv_sqrt2(HP.cos_frac_bits));
+  sr.inv_sqrt2 = on_grid<typename V::ucos_t>(bittrue::inv_sqrt2(HP::cos_frac_bits));
   sr.shininess = s.shininess;
   return f;
 }
@@ -75,5 +81,8 @@ inline void bank_pointers(const bittrue::VirimMemory& m, const std::uint16_t* ou
   for (std::size_t b = 0; b < 16; ++b) out[b] = m.banks[b].data();
 }
 
-}  // namespace voxcast::hls::virim::host
+}  // namespace host
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast
 #endif

@@ -11,24 +11,26 @@
 #include "hls/pragma.hpp"
 #include "hls/virim/params.hpp"
 
-namespace voxcast::hls::virim {
+namespace voxcast {
+namespace hls {
+namespace virim {
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct InterpolationTables {
   using V = VirimParams<HP>;
   typename V::density_t lut[V::lut_entries];      // gray value -> density
   typename V::weight_t rom[V::rom_entries][8];    // address (qz qy qx) -> 8 weights
 };
 
-template <HeidelbergProfile HP>
+template <class HP>
 typename VirimParams<HP>::density_t interpolation_processor(const InterpolationTables<HP>& t,
-                                                           const uint_t<3 * HP.weight_bits>& addr,
+                                                           const uint_t<3 * HP::weight_bits>& addr,
                                                            const std::uint16_t value[8],
                                                            const bool valid[8]) {
   using V = VirimParams<HP>;
   // Each product is exact; the sum of 8 has wf + db fraction bits and stays below 1.
   ufixed<V::wf + V::db + 4, 4> sum = 0;
-  [[maybe_unused]] mac_loop : for (int c = 0; c < 8; ++c) {
+  [[gnu::unused]] mac_loop : for (int c = 0; c < 8; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename V::density_t rho = valid[c] ? t.lut[value[c]] : typename V::density_t(0);
     sum += t.rom[addr.to_uint64()][c] * rho;
@@ -37,4 +39,6 @@ typename VirimParams<HP>::density_t interpolation_processor(const InterpolationT
   return out;
 }
 
-}  // namespace voxcast::hls::virim
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast

@@ -1,27 +1,29 @@
 // VIRIM's fixed-point datapath: every width and type of the rotator and the
-// slice processor, derived from the HeidelbergProfile (docs/heidelberg.md §7).
+// slice processor, derived from a Heidelberg profile as a traits type (VirimTraits,
+// refmodel/precision/profile_traits.hpp) (docs/heidelberg.md §7).
 // One struct read by every unit in hls/virim/, so their widths cannot drift.
 #pragma once
 
 #include "hls/types.hpp"
-#include "refmodel/precision/heidelberg_profile.hpp"
 
-namespace voxcast::hls::virim {
+namespace voxcast {
+namespace hls {
+namespace virim {
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct VirimParams {
-  static constexpr int a = HP.addr_bits;
-  static constexpr int vbits = HP.view_bits;
-  static constexpr int cf = HP.coord_frac_bits;
-  static constexpr int vb = HP.value_bits;
-  static constexpr int wb = HP.weight_bits;
-  static constexpr int wf = HP.weight_frac_bits;
-  static constexpr int db = HP.density_bits;
-  static constexpr int gb = HP.gradient_bits;
-  static constexpr int lf = HP.light_frac_bits;
-  static constexpr int cof = HP.cos_frac_bits;
-  static constexpr int uw = HP.user_weight_bits;
-  static constexpr int ob = HP.out_bits;
+  static constexpr int a = HP::addr_bits;
+  static constexpr int vbits = HP::view_bits;
+  static constexpr int cf = HP::coord_frac_bits;
+  static constexpr int vb = HP::value_bits;
+  static constexpr int wb = HP::weight_bits;
+  static constexpr int wf = HP::weight_frac_bits;
+  static constexpr int db = HP::density_bits;
+  static constexpr int gb = HP::gradient_bits;
+  static constexpr int lf = HP::light_frac_bits;
+  static constexpr int cof = HP::cos_frac_bits;
+  static constexpr int uw = HP::user_weight_bits;
+  static constexpr int ob = HP::out_bits;
   static constexpr int max_view = 1 << vbits;
   static constexpr int rom_entries = 1 << (3 * wb);
   static constexpr int lut_entries = 1 << vb;
@@ -66,4 +68,6 @@ struct VirimParams {
   using level_t = ufixed<ob + 2, ob + 2, RND>;
 };
 
-}  // namespace voxcast::hls::virim
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast

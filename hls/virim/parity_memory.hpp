@@ -11,9 +11,11 @@
 #include "hls/pragma.hpp"
 #include "hls/virim/params.hpp"
 
-namespace voxcast::hls::virim {
+namespace voxcast {
+namespace hls {
+namespace virim {
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct MemoryRegisters {
   typename VirimParams<HP>::box_t lo[3], hi[3];  // inclusive bounds (crop)
   typename VirimParams<HP>::half_t hy, hx2;      // ceil(Ny/2), ceil(Nx/4)
@@ -27,7 +29,7 @@ struct MemoryStats {
   std::uint64_t bank_reads[2] = {0, 0};
 };
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct ParityMemory {
   using V = VirimParams<HP>;
   const std::uint16_t* bank[16];  // [unit * 2 + bank]
@@ -40,7 +42,7 @@ struct ParityMemory {
   MemoryStats stats;
 
   void reset() {
-    [[maybe_unused]] reset_loop : for (int u = 0; u < 8; ++u) {
+    [[gnu::unused]] reset_loop : for (int u = 0; u < 8; ++u) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       held[u] = false;
     }
@@ -76,7 +78,7 @@ struct ParityMemory {
   // c = cx + 2cy + 4cz; unit u serves corner u ^ parity(x0).
   void read8(const typename V::coord_t x0[3], std::uint16_t value[8], bool valid[8]) {
     const int p0 = (x0[0] & 1).to_int() + 2 * (x0[1] & 1).to_int() + 4 * (x0[2] & 1).to_int();
-    [[maybe_unused]] unit_loop : for (int u = 0; u < 8; ++u) {
+    [[gnu::unused]] unit_loop : for (int u = 0; u < 8; ++u) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       const int c = u ^ p0;
       const typename V::coord_t x = x0[0] + (c & 1), y = x0[1] + ((c >> 1) & 1),
@@ -86,4 +88,6 @@ struct ParityMemory {
   }
 };
 
-}  // namespace voxcast::hls::virim
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast

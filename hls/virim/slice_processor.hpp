@@ -10,9 +10,11 @@
 #include "hls/virim/gradient_processor.hpp"
 #include "hls/virim/params.hpp"
 
-namespace voxcast::hls::virim {
+namespace voxcast {
+namespace hls {
+namespace virim {
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct SliceRegisters {
   using V = VirimParams<HP>;
   typename V::light_t light;       // L
@@ -22,7 +24,7 @@ struct SliceRegisters {
   int shininess;                   // 1..127
 };
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct Phong {
   typename VirimParams<HP>::cos_t c0, c45;
   typename VirimParams<HP>::ucos_t d0, d45;  // max(0, c) x fade
@@ -33,14 +35,14 @@ struct Phong {
 template <int N>
 std::uint64_t isqrt(std::uint64_t n) {
   std::uint64_t r = 0;
-  [[maybe_unused]] isqrt_loop : for (int b = N - 1; b >= 0; --b) {
+  [[gnu::unused]] isqrt_loop : for (int b = N - 1; b >= 0; --b) {
     const std::uint64_t t = r | (std::uint64_t{1} << b);
     if (t * t <= n) r = t;
   }
   return r;
 }
 
-template <HeidelbergProfile HP>
+template <class HP>
 Phong<HP> phong(const SliceRegisters<HP>& r, const typename VirimParams<HP>::grad_t& gx,
                 const typename VirimParams<HP>::grad_t& gy) {
   using V = VirimParams<HP>;
@@ -74,7 +76,7 @@ Phong<HP> phong(const SliceRegisters<HP>& r, const typename VirimParams<HP>::gra
   rv = rv - r.inv_sqrt2;
   ucos_t base = rv < 0 ? fixed<V::cof + 4, 4>(0) : (rv > 1 ? fixed<V::cof + 4, 4>(1) : rv);
   ucos_t result = 1;
-  [[maybe_unused]] power_loop : for (int b = 0; b < 7; ++b) {  // square and multiply, n < 128
+  [[gnu::unused]] power_loop : for (int b = 0; b < 7; ++b) {  // square and multiply, n < 128
     if ((r.shininess >> b) & 1) result = result * base;
     base = base * base;
   }
@@ -90,7 +92,7 @@ Phong<HP> phong(const SliceRegisters<HP>& r, const typename VirimParams<HP>::gra
 // One voxel of the model: the energy each light deposits (I rho), what the
 // voxel scatters towards the viewer (bounded by it), the way back (T0), and
 // the attenuation of both lights. Returns the 45 deg light leaving the voxel.
-template <HeidelbergProfile HP>
+template <class HP>
 typename VirimParams<HP>::light_t slice_voxel(const SliceRegisters<HP>& r, const BusWord<HP>& w,
                                               const typename VirimParams<HP>::light_t& t45,
                                               typename VirimParams<HP>::light_t& t0,
@@ -118,7 +120,7 @@ typename VirimParams<HP>::light_t slice_voxel(const SliceRegisters<HP>& r, const
   return t45_out;
 }
 
-template <HeidelbergProfile HP>
+template <class HP>
 std::uint32_t output_level(const typename VirimParams<HP>::acc_t& acc) {
   using V = VirimParams<HP>;
   constexpr std::uint32_t full = (1u << V::ob) - 1u;
@@ -126,4 +128,6 @@ std::uint32_t output_level(const typename VirimParams<HP>::acc_t& acc) {
   return q > full ? full : static_cast<std::uint32_t>(q.to_uint64());
 }
 
-}  // namespace voxcast::hls::virim
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast

@@ -15,9 +15,11 @@
 #include "hls/virim/parity_memory.hpp"
 #include "hls/virim/slice_processor.hpp"
 
-namespace voxcast::hls::virim {
+namespace voxcast {
+namespace hls {
+namespace virim {
 
-template <HeidelbergProfile HP>
+template <class HP>
 struct VirimFrame {
   GeometryRegisters<HP> geometry;
   MemoryRegisters<HP> memory;
@@ -26,23 +28,23 @@ struct VirimFrame {
 };
 
 // One rotated voxel: address, 8 reads, LUT, 8 weights.
-template <HeidelbergProfile HP>
+template <class HP>
 typename VirimParams<HP>::density_t rotator_voxel(const VirimFrame<HP>& f, ParityMemory<HP>& mem,
                                                   int i, int j, int k) {
   const Address<HP> a = geometry_processor<HP>(f.geometry, i, j, k);
   std::uint16_t value[8];
   bool valid[8];
   mem.read8(a.x0, value, valid);
-  uint_t<3 * HP.weight_bits> addr = 0;
-  addr.range(HP.weight_bits - 1, 0) = a.q[0].to_uint64();
-  addr.range(2 * HP.weight_bits - 1, HP.weight_bits) = a.q[1].to_uint64();
-  addr.range(3 * HP.weight_bits - 1, 2 * HP.weight_bits) = a.q[2].to_uint64();
+  uint_t<3 * HP::weight_bits> addr = 0;
+  addr.range(HP::weight_bits - 1, 0) = a.q[0].to_uint64();
+  addr.range(2 * HP::weight_bits - 1, HP::weight_bits) = a.q[1].to_uint64();
+  addr.range(3 * HP::weight_bits - 1, 2 * HP::weight_bits) = a.q[2].to_uint64();
   return interpolation_processor<HP>(f.tables, addr, value, valid);
 }
 
 // Image line k: level[x] and background[x] for x < W. `mem` is reset first,
 // so the counts of one line do not depend on which lines ran before.
-template <HeidelbergProfile HP>
+template <class HP>
 void virim_line(const VirimFrame<HP>& f, ParityMemory<HP>& mem, int k, std::uint32_t* level,
                 bool* background) {
   using V = VirimParams<HP>;
@@ -53,16 +55,16 @@ void virim_line(const VirimFrame<HP>& f, ParityMemory<HP>& mem, int k, std::uint
   density_t ring[3][V::max_view];
   light_t t0[V::max_view], t45[V::max_view];
   typename V::acc_t acc[V::max_view];
-  [[maybe_unused]] init_loop : for (int x = 0; x < W; ++x) {
+  [[gnu::unused]] init_loop : for (int x = 0; x < W; ++x) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT max = 512)
     t0[x] = 1;
     t45[x] = 1;
     acc[x] = 0;
   }
-  [[maybe_unused]] row_loop : for (int j = 0; j <= D; ++j) {
+  [[gnu::unused]] row_loop : for (int j = 0; j <= D; ++j) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT max = 513)
     if (j < D) {
-      [[maybe_unused]] rotate_loop : for (int x = 0; x < W; ++x) {
+      [[gnu::unused]] rotate_loop : for (int x = 0; x < W; ++x) {
         VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT max = 512)
         VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
         ring[j % 3][x] = rotator_voxel<HP>(f, mem, x, j, k);
@@ -75,7 +77,7 @@ void virim_line(const VirimFrame<HP>& f, ParityMemory<HP>& mem, int k, std::uint
       const density_t* below = r + 1 < D ? ring[(r + 1) % 3] : nullptr;
       // Descending x: the 45 deg light leaving x lands in x + 1 of the next row,
       // already consumed in this one.
-      [[maybe_unused]] slice_loop : for (int x = W - 1; x >= 0; --x) {
+      [[gnu::unused]] slice_loop : for (int x = W - 1; x >= 0; --x) {
         VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT max = 512)
         const typename V::bus_t word = pack_bus_word<HP>(gradient_processor<HP>(above, row, below, x, W));
         const light_t out45 = slice_voxel<HP>(f.slice, unpack_bus_word<HP>(word), t45[x], t0[x], acc[x]);
@@ -84,32 +86,33 @@ void virim_line(const VirimFrame<HP>& f, ParityMemory<HP>& mem, int k, std::uint
       t45[0] = 1;  // light enters the cube's side unattenuated
     }
   }
-  [[maybe_unused]] out_loop : for (int x = 0; x < W; ++x) {
+  [[gnu::unused]] out_loop : for (int x = 0; x < W; ++x) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT max = 512)
     level[x] = output_level<HP>(acc[x]);
     background[x] = t0[x] > f.slice.threshold;
   }
 }
 
-// Top level: lines [k_lo, k_hi) of a frame; the 16 banks as one port each.
-template <HeidelbergProfile HP>
+// Lines [k_lo, k_hi) of a frame from the 16 banks. The interface pragmas are
+// in the synthesized top, hls/virim/virim_synth_top.cpp.
+template <class HP>
 void virim_frame(const VirimFrame<HP>* frame, const std::uint16_t* const banks[16], int k_lo,
                  int k_hi, std::uint32_t* level, bool* background, MemoryStats* stats) {
-  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = level)
-  VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = background)
   ParityMemory<HP> mem;
-  [[maybe_unused]] bank_loop : for (int b = 0; b < 16; ++b) {
+  [[gnu::unused]] bank_loop : for (int b = 0; b < 16; ++b) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     mem.bank[b] = banks[b];
   }
   mem.regs = frame->memory;
   mem.stats = MemoryStats{};
   const int W = frame->geometry.W;
-  [[maybe_unused]] line_loop : for (int k = k_lo; k < k_hi; ++k) {
+  [[gnu::unused]] line_loop : for (int k = k_lo; k < k_hi; ++k) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT max = 512)
     virim_line<HP>(*frame, mem, k, level + (k - k_lo) * W, background + (k - k_lo) * W);
   }
   *stats = mem.stats;
 }
 
-}  // namespace voxcast::hls::virim
+}  // namespace virim
+}  // namespace hls
+}  // namespace voxcast

@@ -1,6 +1,7 @@
 // The widths of VIRIM's fixed-point datapath (rotator and slice processor),
-// one plain struct like the ray caster's PrecisionProfile and, like it, a
-// C++20 template parameter of the kernels in hls/virim/. Each width is
+// one plain struct like the ray caster's PrecisionProfile; like it, the
+// kernels in hls/virim/ take it as a traits type (VirimTraits,
+// HeidelbergTraits<V>: refmodel/precision/profile_traits.hpp, preset_profiles.hpp). Each width is
 // specified in docs/heidelberg.md §7.
 #pragma once
 

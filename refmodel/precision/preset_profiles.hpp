@@ -1,67 +1,96 @@
-// The presets of presets.cpp as constexpr values, for the hls kernels' template
-// parameter (`template <PrecisionProfile P>`), which needs a compile-time
-// profile. They mirror preset_profile(name) field for field; a test checks
-// that kVizard2 == preset_profile("vizard2") and so on.
+// The presets as constexpr PrecisionProfile values, and the bridge between a
+// profile value (the C++20 side: the bit-true reference, the resource model,
+// reports, tests) and a profile type (the hls kernels' template parameter,
+// refmodel/precision/profile_traits.hpp):
+//   profile_value<T>()  the value of a traits type (kVizard2 = profile_value<Vizard2Traits>());
+//   ProfileTraits<V>    the traits type of any constexpr value V (the preset's own
+//                       for a preset; tests' custom profiles get one of their own).
+// A test checks that kVizard2 == preset_profile("vizard2") and so on.
 #pragma once
 
+#include "refmodel/precision/heidelberg_profile.hpp"
 #include "refmodel/precision/profile.hpp"
+#include "refmodel/precision/profile_traits.hpp"
 
 namespace voxcast {
 
-inline constexpr PrecisionProfile kVizard2{};  // the struct's defaults are the vizard2 card
+// Every field of PrecisionProfile, in declaration order: X(name) once each.
+#define VOXCAST_PRECISION_PROFILE_FIELDS(X)                                                      \
+  X(addr_bits) X(pos_frac_bits) X(dir_frac_bits) X(rsqrt_seed_bits) X(t_frac_bits)               \
+  X(weight_bits) X(value_bits) X(gradient_bits) X(gradient_frac_bits) X(sample_frac_bits)        \
+  X(tf_addr_bits) X(color_bits) X(alpha_bits) X(k_bits) X(rm_res) X(rm_frac_bits)                \
+  X(rm_int_bits) X(rm_bilinear) X(rm_weight_bits) X(shade_bits) X(acc_bits) X(out_bits)
+#define VOXCAST_HEIDELBERG_PROFILE_FIELDS(X)                                                     \
+  X(addr_bits) X(view_bits) X(coord_frac_bits) X(value_bits) X(weight_bits)                      \
+  X(weight_frac_bits) X(density_bits) X(gradient_bits) X(light_frac_bits) X(cos_frac_bits)       \
+  X(user_weight_bits) X(out_bits)
 
-inline constexpr PrecisionProfile kBalanced = [] {
+template <class T>
+constexpr PrecisionProfile profile_value() {
   PrecisionProfile p;
-  p.addr_bits = 10;
-  p.pos_frac_bits = 18;
-  p.dir_frac_bits = 22;
-  p.rsqrt_seed_bits = 8;
-  p.t_frac_bits = 14;
-  p.weight_bits = 8;
-  p.value_bits = 12;
-  p.gradient_bits = 16;
-  p.gradient_frac_bits = 3;
-  p.sample_frac_bits = 8;
-  p.tf_addr_bits = 12;
-  p.color_bits = 12;
-  p.alpha_bits = 16;
-  p.k_bits = 12;
-  p.rm_res = 32;
-  p.rm_frac_bits = 12;
-  p.rm_int_bits = 2;
-  p.rm_bilinear = 1;  // §5.5, 6·33² entries per table: as accurate as nearest at rm_res 256
-  p.rm_weight_bits = 8;
-  p.shade_bits = 12;
-  p.acc_bits = 16;
-  p.out_bits = 8;
+#define VOXCAST_COPY_FIELD(name) p.name = T::name;
+  VOXCAST_PRECISION_PROFILE_FIELDS(VOXCAST_COPY_FIELD)
   return p;
-}();
+}
 
-inline constexpr PrecisionProfile kPrecise = [] {
-  PrecisionProfile p;
-  p.addr_bits = 10;
-  p.pos_frac_bits = 22;
-  p.dir_frac_bits = 24;
-  p.rsqrt_seed_bits = 10;
-  p.t_frac_bits = 16;
-  p.weight_bits = 10;
-  p.value_bits = 16;
-  p.gradient_bits = 20;
-  p.gradient_frac_bits = 3;
-  p.sample_frac_bits = 10;
-  p.tf_addr_bits = 14;
-  p.color_bits = 16;
-  p.alpha_bits = 20;
-  p.k_bits = 16;
-  p.rm_res = 64;
-  p.rm_frac_bits = 16;
-  p.rm_int_bits = 2;
-  p.rm_bilinear = 1;  // §5.5, 6·65² entries per table: finer grids no longer change the image
-  p.rm_weight_bits = 10;
-  p.shade_bits = 16;
-  p.acc_bits = 20;
-  p.out_bits = 8;
+template <class T>
+constexpr HeidelbergProfile heidelberg_value() {
+  HeidelbergProfile p;
+  VOXCAST_HEIDELBERG_PROFILE_FIELDS(VOXCAST_COPY_FIELD)
   return p;
-}();
+}
+#undef VOXCAST_COPY_FIELD
+
+inline constexpr PrecisionProfile kVizard2 = profile_value<Vizard2Traits>();
+inline constexpr PrecisionProfile kBalanced = profile_value<BalancedTraits>();
+inline constexpr PrecisionProfile kPrecise = profile_value<PreciseTraits>();
+
+// A traits type with V's widths; for a preset, the preset's own traits type
+// (ProfileTraits<kBalanced> is BalancedTraits), so the engines' and the tests'
+// instantiations are one.
+#define VOXCAST_TRAIT_FIELD(name) static constexpr int name = V.name;
+template <PrecisionProfile V>
+struct ValueTraits {
+  VOXCAST_PRECISION_PROFILE_FIELDS(VOXCAST_TRAIT_FIELD)
+};
+template <HeidelbergProfile V>
+struct HeidelbergValueTraits {
+  VOXCAST_HEIDELBERG_PROFILE_FIELDS(VOXCAST_TRAIT_FIELD)
+};
+#undef VOXCAST_TRAIT_FIELD
+
+template <PrecisionProfile V>
+struct ProfileTraitsOf {
+  using type = ValueTraits<V>;
+};
+template <>
+struct ProfileTraitsOf<kVizard2> {
+  using type = Vizard2Traits;
+};
+template <>
+struct ProfileTraitsOf<kBalanced> {
+  using type = BalancedTraits;
+};
+template <>
+struct ProfileTraitsOf<kPrecise> {
+  using type = PreciseTraits;
+};
+template <PrecisionProfile V>
+using ProfileTraits = typename ProfileTraitsOf<V>::type;
+
+template <HeidelbergProfile V>
+struct HeidelbergTraitsOf {
+  using type = HeidelbergValueTraits<V>;
+};
+template <>
+struct HeidelbergTraitsOf<kVirimProfile> {
+  using type = VirimTraits;
+};
+template <HeidelbergProfile V>
+using HeidelbergTraits = typename HeidelbergTraitsOf<V>::type;
+
+// The structs' defaults are the published cards, and the traits say the same.
+static_assert(kVizard2 == PrecisionProfile{});
+static_assert(heidelberg_value<VirimTraits>() == kVirimProfile);
 
 }  // namespace voxcast

@@ -1,10 +1,11 @@
 // The precision profile: every bit width and table size of the fixed-point
 // VIZARD II pipeline, in one plain struct.
 //
-// The same struct is runtime data (the bit-true reference, the resource model,
-// reports) and, being a structural type, a C++20 template parameter of the hls
-// kernels (`template <PrecisionProfile P>`), so the design and its checks read
-// one set of numbers. The datapath each width belongs to is specified in
+// The struct is runtime data (the bit-true reference, the resource model,
+// reports). The hls kernels take a profile as a type with the same members as
+// static constexpr ints (`template <class P>`, P::value_bits; the presets are
+// refmodel/precision/profile_traits.hpp, ProfileTraits<V> turns a constexpr
+// value into one), so the design and its checks read one set of numbers. The datapath each width belongs to is specified in
 // docs/pipeline.md; widths are named after the unit that owns them.
 #pragma once
 

@@ -1,11 +1,12 @@
 // render.jitter (docs/leaping.md): the per-pixel start offset every engine
 // computes, bit for bit the same (the hls kernels include this header: plain
-// integer arithmetic, synthesizable as written).
+// integer arithmetic, synthesizable as written; C++14 like the kernels).
 #pragma once
 
 #include <cstdint>
 
-namespace voxcast::ref {
+namespace voxcast {
+namespace ref {
 
 // The per-pixel hash (lowbias32, C. Wellons' "hash prospector" integer hash):
 // px < 2^13 and py < 2^13 (render.width/height <= 8192) are packed into the
@@ -28,4 +29,5 @@ constexpr std::uint32_t jitter_raw(int px, int py, int bits) {
   return bits >= 32 ? h : h >> (32 - bits);
 }
 
-}  // namespace voxcast::ref
+}  // namespace ref
+}  // namespace voxcast

@@ -90,7 +90,7 @@ class Vizard2Layout {
   // at word addr[parity] = (i0x >> 1) + (i0y >> 1) HX + (i0z >> 1) HX HY
   // (docs/pipeline.md §3.3). The address translation of the card's memory
   // interface; no datapath arithmetic.
-  template <PrecisionProfile P>
+  template <class P>
   std::array<int, 3> corner(const hls::BankAccess<P>& acc) const {
     const std::uint64_t base = acc.addr[acc.parity].to_uint64();
     const std::uint64_t row = hx_.div(base);
@@ -107,7 +107,7 @@ class Vizard2Layout {
 };
 
 // The contents of one DIMM word, as the datapath sees them (both voxels).
-template <PrecisionProfile P>
+template <class P>
 struct DimmWord {
   hls::VoxelWordFx<P> lo, hi;  // v(x, y, z), v(x + 1, y, z)
 };
@@ -115,7 +115,7 @@ struct DimmWord {
 // Reads DIMM words out of the volume: the card's memory image as a function of
 // the host's voxel memory (bittrue::VoxelMemory, the same words the hls engine
 // reads), so the model never holds a second copy of a 256^3 volume.
-template <PrecisionProfile P>
+template <class P>
 class Vizard2Memory {
  public:
   explicit Vizard2Memory(const bittrue::VoxelMemory& memory)
@@ -178,7 +178,7 @@ class Vizard2Memory {
 // interleave is DIMM b >> 1 (its y and z parities), and the corner it holds
 // has x-offset (b ^ parity) & 1, the half of the replicated word. The word
 // address the hls gather passes is the one this sample's requests carried.
-template <PrecisionProfile P>
+template <class P>
 struct Dimm4Banks {
   const DimmWord<P>* words;  // [kDimms]
   unsigned parity;

@@ -63,7 +63,7 @@
 
 namespace voxcast::rtl::pipeline {
 
-template <PrecisionProfile P>
+template <class P>
 class RayPipeline {
  public:
   using G = hls::GeometryParams<P>;
@@ -148,7 +148,7 @@ class RayPipeline {
   // deadlock or undrained state. Call once per pipeline.
   ref::QuantImage run(int width, int height, RtlStats& stats) {
     order_ = pixel_order(width, height, config_.traversal, config_.tile);
-    ref::QuantImage image(width, height, P.out_bits);
+    ref::QuantImage image(width, height, P::out_bits);
     image_ = &image;
     stats_ = RtlStats{};
     stats_.clock_mhz = config_.dimm.clock.frequency_mhz();

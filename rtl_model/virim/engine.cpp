@@ -46,7 +46,7 @@ struct ModuleJob {
 // queue, so the model advances each unit's own clock and settles the bus and
 // the DSPs lazily, when the rotator needs room: the same cycles a
 // clock-by-clock simulation gives, at a cost per word instead of per clock.
-template <HeidelbergProfile HP>
+template <class HP>
 class Module {
   using V = hls::virim::VirimParams<HP>;
   using density_t = typename V::density_t;
@@ -189,10 +189,10 @@ class Module {
     ++stats_.voxels;
     last_issue_ = issue;
     rc_ = issue + 1;
-    hls::uint_t<3 * HP.weight_bits> addr = 0;
-    addr.range(HP.weight_bits - 1, 0) = a.q[0].to_uint64();
-    addr.range(2 * HP.weight_bits - 1, HP.weight_bits) = a.q[1].to_uint64();
-    addr.range(3 * HP.weight_bits - 1, 2 * HP.weight_bits) = a.q[2].to_uint64();
+    hls::uint_t<3 * HP::weight_bits> addr = 0;
+    addr.range(HP::weight_bits - 1, 0) = a.q[0].to_uint64();
+    addr.range(2 * HP::weight_bits - 1, HP::weight_bits) = a.q[1].to_uint64();
+    addr.range(3 * HP::weight_bits - 1, 2 * HP::weight_bits) = a.q[2].to_uint64();
     return hls::virim::interpolation_processor<HP>(f_.tables, addr, value, valid);
   }
 
@@ -360,7 +360,7 @@ void add(VirimRtlStats& to, const VirimRtlStats& s) {
   to.cycles = std::max(to.cycles, s.cycles);
 }
 
-template <HeidelbergProfile HP>
+template <class HP>
 VirimRtlResult render(const bittrue::VirimSetup& setup, const bittrue::VirimMemory& memory,
                       const VirimRtlConfig& cfg, int threads) {
   const auto frame = hls::virim::host::load_virim_frame<HP>(setup);
@@ -395,7 +395,7 @@ VirimRtlResult render(const bittrue::VirimSetup& setup, const bittrue::VirimMemo
   r.stats.rotator_mhz = clocks.rotator.frequency_mhz();
   r.stats.dsp_mhz = clocks.dsp.frequency_mhz();
   for (const VirimRtlStats& s : per_module) add(r.stats, s);
-  r.image = ref::QuantImage(setup.W, setup.H, HP.out_bits);
+  r.image = ref::QuantImage(setup.W, setup.H, HP::out_bits);
   const auto full = static_cast<std::uint32_t>(r.image.full_scale());
   for (int k = 0; k < setup.H; ++k)
     for (int x = 0; x < setup.W; ++x) {
@@ -415,7 +415,7 @@ VirimRtlResult virim_rtl_render(const bittrue::VirimSetup& setup, const bittrue:
   validate(config);
   VirimRtlResult r;
   const bool compiled = hls::virim::host::dispatch_heidelberg_profile(
-      setup.profile, [&]<HeidelbergProfile HP>() { r = render<HP>(setup, memory, config, threads); });
+      setup.profile, [&]<class HP>() { r = render<HP>(setup, memory, config, threads); });
   if (!compiled)
     throw Error("rtl engine: heidelberg.weight_bits = " + std::to_string(setup.profile.weight_bits) +
                 " is not compiled in (compiled: " +

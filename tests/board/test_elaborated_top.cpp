@@ -69,21 +69,21 @@ constexpr hls::Units kShadedParallel{.perspective = false,
                                      .mip = false,
                                      .space_leaping = false};
 
-using Word = hls::InterpolationParams<kBalanced>::packed_word_t;
+using Word = hls::InterpolationParams<voxcast::BalancedTraits>::packed_word_t;
 
 }  // namespace
 
 // hls/vizard2_synth_top.cpp compiled with each scene's elaborated_config.hpp.
 // The units are part of the parameter type, so these link only if the
 // generated headers carry exactly these flags (and the balanced profile).
-void vizard2_frame_top(const hls::FrameState<kBalanced, kMipParallel>* frame, const Word* bank0,
+void vizard2_frame_top(const hls::FrameState<voxcast::BalancedTraits, hls::host::UnitsType<kMipParallel>>* frame, const Word* bank0,
                        const Word* bank1, const Word* bank2, const Word* bank3, const Word* bank4,
                        const Word* bank5, const Word* bank6, const Word* bank7, int width,
-                       int height, hls::OutputPixel<kBalanced>* fb, std::uint64_t* samples);
-void vizard2_frame_top(const hls::FrameState<kBalanced, kUnshadedNoErt>* frame, const Word* bank0,
+                       int height, hls::OutputPixel<voxcast::BalancedTraits>* fb, std::uint64_t* samples);
+void vizard2_frame_top(const hls::FrameState<voxcast::BalancedTraits, hls::host::UnitsType<kUnshadedNoErt>>* frame, const Word* bank0,
                        const Word* bank1, const Word* bank2, const Word* bank3, const Word* bank4,
                        const Word* bank5, const Word* bank6, const Word* bank7, int width,
-                       int height, hls::OutputPixel<kBalanced>* fb, std::uint64_t* samples);
+                       int height, hls::OutputPixel<voxcast::BalancedTraits>* fb, std::uint64_t* samples);
 
 namespace voxcast {
 namespace VOXCAST_UNITY_ID {
@@ -92,16 +92,19 @@ namespace fs = std::filesystem;
 
 const std::string kPhantom = "volume.source=phantom:shepp-logan?size=128";
 
-// The flags of a generated header: ".name = true|false," lines of kUnits.
+// The flags of a generated header: the "    /* name = */ true|false," lines of
+// its UnitSet<...> (the last one ends ">;").
 std::map<std::string, bool> header_flags(const std::string& text) {
   std::map<std::string, bool> flags;
   std::istringstream in(text);
   for (std::string l; std::getline(in, l);) {
-    const auto eq = l.find(" = ");
-    if (l.rfind("    .", 0) != 0 || eq == std::string::npos) continue;
-    const std::string value = l.substr(eq + 3);
-    EXPECT_TRUE(value == "true," || value == "false,") << l;
-    flags[l.substr(5, eq - 5)] = value == "true,";
+    const auto eq = l.find(" = */ ");
+    if (l.rfind("    /* ", 0) != 0 || eq == std::string::npos) continue;
+    const std::string value = l.substr(eq + 6);
+    EXPECT_TRUE(value == "true," || value == "false," || value == "true>;" ||
+                value == "false>;")
+        << l;
+    flags[l.substr(7, eq - 7)] = value.rfind("true", 0) == 0;
   }
   return flags;
 }
@@ -146,11 +149,11 @@ TEST(ElaboratedTop, SynthScriptWritesTheElaboratedUnits) {
     EXPECT_EQ(fs::path(paths[0]).filename(), "elaborated_config.hpp");
     const std::string header = read(paths[0]);
     EXPECT_EQ(header_flags(header), flags_of(c.expected)) << header;
-    EXPECT_NE(header.find("kProfile = kBalanced;"), std::string::npos);
+    EXPECT_NE(header.find("using Profile = BalancedTraits;"), std::string::npos);
     // Every omission is listed with its reason.
     const cosim::SceneVolume sv = cosim::load_scene_volume(scene);
     const ref::Elaboration e = ref::elaborate(scene, sv.volume, sv.gradients);
-    EXPECT_EQ(cosim::elaborated_units(e), c.expected);
+    EXPECT_TRUE(hls::same_units(cosim::elaborated_units(e), c.expected));
     for (const ref::Omission& o : e.omitted)
       EXPECT_NE(header.find("//   " + o.unit + ": " + o.reason), std::string::npos) << o.unit;
     // The data's range: 8-bit phantom, so 8 stored value bits.
@@ -170,13 +173,13 @@ TEST(ElaboratedTop, SynthScriptWritesTheElaboratedUnits) {
 // An absent unit has no storage in the frame state: the MIP design holds
 // neither the rsqrt ROM, the classification table nor the reflectance map.
 TEST(ElaboratedTop, AbsentUnitsHaveNoState) {
-  using Full = hls::FrameState<kBalanced>;
-  using Mip = hls::FrameState<kBalanced, kMipParallel>;
-  using Unshaded = hls::FrameState<kBalanced, kUnshadedNoErt>;
-  const std::size_t rsqrt = sizeof(hls::RsqrtRom<kBalanced>);
-  const std::size_t table = sizeof(hls::ClassificationTable<kBalanced>);
+  using Full = hls::FrameState<voxcast::BalancedTraits>;
+  using Mip = hls::FrameState<voxcast::BalancedTraits, hls::host::UnitsType<kMipParallel>>;
+  using Unshaded = hls::FrameState<voxcast::BalancedTraits, hls::host::UnitsType<kUnshadedNoErt>>;
+  const std::size_t rsqrt = sizeof(hls::RsqrtRom<voxcast::BalancedTraits>);
+  const std::size_t table = sizeof(hls::ClassificationTable<voxcast::BalancedTraits>);
   const std::size_t rm =
-      sizeof(hls::ReflectanceMap<kBalanced>) + sizeof(hls::ReflectanceRegisters<kBalanced>);
+      sizeof(hls::ReflectanceMap<voxcast::BalancedTraits>) + sizeof(hls::ReflectanceRegisters<voxcast::BalancedTraits>);
   EXPECT_LE(sizeof(Mip) + rsqrt + table + rm, sizeof(Full));
   EXPECT_LE(sizeof(Unshaded) + rm, sizeof(Full));
   EXPECT_GE(sizeof(Unshaded), table + rsqrt);
@@ -186,11 +189,11 @@ TEST(ElaboratedTop, AbsentUnitsHaveNoState) {
 struct PackedVolume {
   std::array<std::vector<Word>, 8> words;
   explicit PackedVolume(const bittrue::VoxelMemory& mem) {
-    const hls::host::BitTrueBanks<kBalanced> view(mem);
+    const hls::host::BitTrueBanks<voxcast::BalancedTraits> view(mem);
     for (int b = 0; b < 8; ++b)
       for (std::size_t w = 0; w < mem.banks[static_cast<std::size_t>(b)].size(); ++w)
-        words[static_cast<std::size_t>(b)].push_back(hls::pack_voxel_word<kBalanced>(
-            view.read(b, hls::InterpolationParams<kBalanced>::word_addr_t(w))));
+        words[static_cast<std::size_t>(b)].push_back(hls::pack_voxel_word<voxcast::BalancedTraits>(
+            view.read(b, hls::InterpolationParams<voxcast::BalancedTraits>::word_addr_t(w))));
   }
 };
 
@@ -218,10 +221,10 @@ Frame make_frame(const std::string& scene_file, ref::Overrides sets) {
 template <hls::Units U>
 void expect_top_equals_hls(const Frame& f) {
   ASSERT_EQ(f.scene.precision, kBalanced);
-  const auto state = hls::host::load_frame_state<kBalanced, U>(f.setup, "elaborated top");
+  const auto state = hls::host::load_frame_state<voxcast::BalancedTraits, hls::host::UnitsType<U>>(f.setup, "elaborated top");
   const PackedVolume v(f.memory);
   const int w = f.setup.regs.width, h = f.setup.regs.height;
-  std::vector<hls::OutputPixel<kBalanced>> fb(static_cast<std::size_t>(w * h));
+  std::vector<hls::OutputPixel<voxcast::BalancedTraits>> fb(static_cast<std::size_t>(w * h));
   std::uint64_t samples = 0;
   vizard2_frame_top(state.get(), v.words[0].data(), v.words[1].data(), v.words[2].data(),
                     v.words[3].data(), v.words[4].data(), v.words[5].data(), v.words[6].data(),
@@ -266,13 +269,13 @@ TEST(ElaboratedTop, AFrameOfAnotherSceneIsRefused) {
   };
   const Frame mip = make_frame("mip.toml", {});
   EXPECT_EQ(message([&] {
-              return hls::host::load_frame_state<kBalanced, kUnshadedNoErt>(mip.setup, "top");
+              return hls::host::load_frame_state<voxcast::BalancedTraits, hls::host::UnitsType<kUnshadedNoErt>>(mip.setup, "top");
             }),
             "top: the design has no units for this camera and no path for render.mode = mip "
             "(it was elaborated for another scene)");
   const Frame shaded = make_frame("mip.toml", {"render.mode=shaded"});
   EXPECT_EQ(message([&] {
-              return hls::host::load_frame_state<kBalanced, kMipParallel>(shaded.setup, "top");
+              return hls::host::load_frame_state<voxcast::BalancedTraits, hls::host::UnitsType<kMipParallel>>(shaded.setup, "top");
             }),
             "top: the design has no path for render.mode = shaded (it was elaborated for "
             "another scene)");

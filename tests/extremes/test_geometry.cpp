@@ -61,11 +61,11 @@ struct Drift {
 // bt_step (bit-exact at every step) against the float reference's sample positions.
 template <PrecisionProfile P>
 Drift drift(const Setup& g, int px, int py, double es, const std::string& what) {
-  using G = hls::GeometryParams<P>;
-  const hls::GeometryRegisters<P> regs = hls::host::load_geometry_registers<P>(g.fs.regs);
-  auto rom = std::make_unique<hls::RsqrtRom<P>>();
-  if (g.fs.regs.perspective) hls::host::load_rsqrt_rom<P>(g.fs.rsqrt_seed, *rom);
-  const hls::RaySetup<P> ray = hls::ray_setup<P>(regs, rom->seed, px, py);
+  using G = hls::GeometryParams<ProfileTraits<P>>;
+  const hls::GeometryRegisters<ProfileTraits<P>> regs = hls::host::load_geometry_registers<ProfileTraits<P>>(g.fs.regs);
+  auto rom = std::make_unique<hls::RsqrtRom<ProfileTraits<P>>>();
+  if (g.fs.regs.perspective) hls::host::load_rsqrt_rom<ProfileTraits<P>>(g.fs.rsqrt_seed, *rom);
+  const hls::RaySetup<ProfileTraits<P>> ray = hls::ray_setup<ProfileTraits<P>>(regs, rom->seed, px, py);
   const bittrue::BtRay bt = bittrue::bt_ray_setup(g.fs, px, py);
   Drift d;
   EXPECT_TRUE(bt.hit) << what;
@@ -92,7 +92,7 @@ Drift drift(const Setup& g, int px, int py, double es, const std::string& what) 
   std::uint64_t mismatches = 0;
   for (std::uint64_t j = 0; j < n; ++j) {
     if (j > 0) {
-      hls::step_position<P>(p, ray.s);
+      hls::step_position<ProfileTraits<P>>(p, ray.s);
       q = bittrue::bt_step(q, bt.s);
     }
     const ref::Vec3 x =

@@ -23,7 +23,7 @@ namespace voxcast::test {
 namespace VOXCAST_UNITY_ID {
 
 constexpr HeidelbergProfile HP = kVirimProfile;
-using V = hls::virim::VirimParams<HP>;
+using V = hls::virim::VirimParams<HeidelbergTraits<HP>>;
 
 // An oblique, perspective, zoomed, translated view of a random volume.
 struct Oblique {
@@ -41,11 +41,11 @@ TEST(VirimFixedPoint, BusWordIs48BitsAndRoundTrips) {
   static_assert(V::bus_bits == 48, "VIRIM's rotator-DSP bus is 48 bits wide");
   std::mt19937 rng(1);
   for (int t = 0; t < 1000; ++t) {
-    hls::virim::BusWord<HP> w;
+    hls::virim::BusWord<HeidelbergTraits<HP>> w;
     w.density.range(15, 0) = rng() & 0xffff;
     w.gx.range(15, 0) = rng() & 0xffff;
     w.gy.range(15, 0) = rng() & 0xffff;
-    const auto b = hls::virim::unpack_bus_word<HP>(hls::virim::pack_bus_word<HP>(w));
+    const auto b = hls::virim::unpack_bus_word<HeidelbergTraits<HP>>(hls::virim::pack_bus_word<HeidelbergTraits<HP>>(w));
     ASSERT_EQ(b.density, w.density);
     ASSERT_EQ(b.gx, w.gx);
     ASSERT_EQ(b.gy, w.gy);
@@ -54,12 +54,12 @@ TEST(VirimFixedPoint, BusWordIs48BitsAndRoundTrips) {
 
 TEST(VirimFixedPoint, GeometryProcessorEqualsBitTrue) {
   const Oblique o;
-  const auto frame = hls::virim::host::load_virim_frame<HP>(o.setup);
+  const auto frame = hls::virim::host::load_virim_frame<HeidelbergTraits<HP>>(o.setup);
   for (int k = 0; k < o.setup.H; k += 3)
     for (int j = 0; j < o.setup.D; ++j)
       for (int i = 0; i < o.setup.W; ++i) {
         V::pos_t p[3];
-        hls::virim::data_position<HP>(frame->geometry, i, j, k, p);
+        hls::virim::data_position<HeidelbergTraits<HP>>(frame->geometry, i, j, k, p);
         const bittrue::BtPosition b = bittrue::bt_position(o.setup, i, j, k);
         for (std::size_t a = 0; a < 3; ++a) ASSERT_EQ(p[a].to_double(), b.p[a]) << i << " " << j << " " << k;
       }
@@ -107,22 +107,22 @@ TEST(VirimFixedPoint, WeightRomSumsToOneAndIsWithinOneLsbOfTheMask) {
 
 TEST(VirimFixedPoint, RotatedDensitiesEqualBitTrue) {
   const Oblique o;
-  const auto frame = hls::virim::host::load_virim_frame<HP>(o.setup);
-  hls::virim::ParityMemory<HP> mem;
+  const auto frame = hls::virim::host::load_virim_frame<HeidelbergTraits<HP>>(o.setup);
+  hls::virim::ParityMemory<HeidelbergTraits<HP>> mem;
   hls::virim::host::bank_pointers(o.memory, mem.bank);
   mem.regs = frame->memory;
   mem.reset();
   for (int k = 0; k < o.setup.H; k += 2)
     for (int j = 0; j < o.setup.D; ++j)
       for (int i = 0; i < o.setup.W; ++i)
-        ASSERT_EQ(hls::virim::rotator_voxel<HP>(*frame, mem, i, j, k).to_double(),
+        ASSERT_EQ(hls::virim::rotator_voxel<HeidelbergTraits<HP>>(*frame, mem, i, j, k).to_double(),
                   bittrue::bt_density(o.setup, o.memory, i, j, k));
 }
 
 TEST(VirimFixedPoint, ParityMemorySuppressesRepeatsAndReadsZeroOutOfBounds) {
   const ref::Volume v = random_volume(8, 8, 8, 9);
   const bittrue::VirimMemory m = bittrue::make_virim_memory(v);
-  hls::virim::ParityMemory<HP> mem;
+  hls::virim::ParityMemory<HeidelbergTraits<HP>> mem;
   hls::virim::host::bank_pointers(m, mem.bank);
   for (int a = 0; a < 3; ++a) mem.regs.lo[a] = 0, mem.regs.hi[a] = 7;
   mem.regs.hy = 4;
@@ -165,10 +165,10 @@ TEST(VirimFixedPoint, ParityMemorySuppressesRepeatsAndReadsZeroOutOfBounds) {
 
 TEST(VirimFixedPoint, SliceProcessorEqualsBitTrueOnRandomWords) {
   const Oblique o;
-  const auto frame = hls::virim::host::load_virim_frame<HP>(o.setup);
+  const auto frame = hls::virim::host::load_virim_frame<HeidelbergTraits<HP>>(o.setup);
   std::mt19937 rng(11);
   for (int t = 0; t < 20000; ++t) {
-    hls::virim::BusWord<HP> w;
+    hls::virim::BusWord<HeidelbergTraits<HP>> w;
     w.density.range(15, 0) = rng() & 0xffff;
     // Gradients as the Sobel/8 of densities makes them: in (-1/2, 1/2); small ones often.
     const int shift = static_cast<int>(rng() % 12);
@@ -182,7 +182,7 @@ TEST(VirimFixedPoint, SliceProcessorEqualsBitTrueOnRandomWords) {
     bittrue::BtVoxelState st{t0.to_double(), acc.to_double()};
     const double bt45 = bittrue::bt_slice_voxel(
         o.setup, {w.density.to_double(), w.gx.to_double(), w.gy.to_double()}, t45.to_double(), st);
-    const V::light_t h45 = hls::virim::slice_voxel<HP>(frame->slice, w, t45, t0, acc);
+    const V::light_t h45 = hls::virim::slice_voxel<HeidelbergTraits<HP>>(frame->slice, w, t45, t0, acc);
     ASSERT_EQ(h45.to_double(), bt45);
     ASSERT_EQ(t0.to_double(), st.t0);
     ASSERT_EQ(acc.to_double(), st.acc) << "word " << t;

@@ -54,15 +54,15 @@ template <class T>
 class ClassificationTableTest : public ::testing::Test {
  protected:
   static constexpr PrecisionProfile kP = T::value;
-  using Params = hls::ClassificationParams<kP>;
+  using Params = hls::ClassificationParams<ProfileTraits<kP>>;
   using value_t = typename Params::value_t;
 
   void SetUp() override {
     tf_ = scene_tf(kP);
     fs_.profile = kP;
     fs_.class_table = bt::make_class_table(kP, tf_, kStep);
-    table_ = std::make_unique<hls::ClassificationTable<kP>>();
-    ASSERT_TRUE(hls::host::load_class_table<kP>(*table_, fs_.class_table));
+    table_ = std::make_unique<hls::ClassificationTable<ProfileTraits<kP>>>();
+    ASSERT_TRUE(hls::host::load_class_table<ProfileTraits<kP>>(*table_, fs_.class_table));
   }
 
   static value_t value_from_raw(std::uint64_t raw) {
@@ -80,10 +80,10 @@ class ClassificationTableTest : public ::testing::Test {
   // (a) for one raw sample value: address and entry, hls against bit-true.
   void expect_same(std::uint64_t raw) {
     const double x = value_of_raw(raw);
-    const auto addr = hls::class_address<kP>(value_from_raw(raw));
+    const auto addr = hls::class_address<ProfileTraits<kP>>(value_from_raw(raw));
     ASSERT_EQ(addr.to_uint(), static_cast<unsigned>(bt::bt_class_address(kP, x))) << "value " << x;
     const bt::ClassEntry got =
-        hls::host::entry_to_raw<kP>(hls::classify(*table_, value_from_raw(raw)));
+        hls::host::entry_to_raw<ProfileTraits<kP>>(hls::classify(*table_, value_from_raw(raw)));
     const bt::ClassEntry& want = bt::bt_classify(fs_, x);
     ASSERT_TRUE(got.r == want.r && got.g == want.g && got.b == want.b && got.alpha == want.alpha &&
                 got.ka == want.ka && got.kd == want.kd && got.ks == want.ks)
@@ -92,7 +92,7 @@ class ClassificationTableTest : public ::testing::Test {
 
   ref::TransferFunction tf_;
   bt::FrameSetup fs_;
-  std::unique_ptr<hls::ClassificationTable<kP>> table_;
+  std::unique_ptr<hls::ClassificationTable<ProfileTraits<kP>>> table_;
 };
 TYPED_TEST_SUITE(ClassificationTableTest, Presets, PresetNames);
 
@@ -101,7 +101,7 @@ TYPED_TEST_SUITE(ClassificationTableTest, Presets, PresetNames);
 TYPED_TEST(ClassificationTableTest, LoadsEveryEntryBitExactly) {
   constexpr PrecisionProfile P = TestFixture::kP;
   for (int i = 0; i < TestFixture::Params::entries; ++i) {
-    const bt::ClassEntry got = hls::host::entry_to_raw<P>(this->table_->entry[i]);
+    const bt::ClassEntry got = hls::host::entry_to_raw<ProfileTraits<P>>(this->table_->entry[i]);
     const bt::ClassEntry& want = this->fs_.class_table[static_cast<std::size_t>(i)];
     ASSERT_TRUE(got.r == want.r && got.g == want.g && got.b == want.b && got.alpha == want.alpha &&
                 got.ka == want.ka && got.kd == want.kd && got.ks == want.ks)
@@ -170,7 +170,7 @@ TYPED_TEST(ClassificationTableTest, WithinDerivedBoundOfFloatTransferFunction) {
   for (int n = 0; n < 100000; ++n) {
     const std::uint64_t raw = n == 0 ? TestFixture::kMaxRaw : any(rng);
     const double x = TestFixture::value_of_raw(raw);
-    const hls::ClassEntry<P> e = hls::classify(*this->table_, TestFixture::value_from_raw(raw));
+    const hls::ClassEntry<ProfileTraits<P>> e = hls::classify(*this->table_, TestFixture::value_from_raw(raw));
     const ref::Classified f = this->tf_.classify(x);
     const double da = std::abs(e.alpha.to_double() - ref::opacity_correct(f.alpha, kStep));
     ASSERT_LE(da, bound_alpha) << "value " << x;
@@ -201,8 +201,8 @@ TYPED_TEST(ClassificationTableTest, EntryPointsAddressThemselves) {
   constexpr PrecisionProfile P = TestFixture::kP;
   const int shift = P.value_bits - P.tf_addr_bits + P.sample_frac_bits;
   for (std::uint64_t i = 0; i < (std::uint64_t{1} << P.tf_addr_bits); ++i)
-    ASSERT_EQ(hls::class_address<P>(TestFixture::value_from_raw(i << shift)).to_uint(), i);
-  EXPECT_EQ(hls::class_address<P>(TestFixture::value_from_raw(TestFixture::kMaxRaw)).to_uint(),
+    ASSERT_EQ(hls::class_address<ProfileTraits<P>>(TestFixture::value_from_raw(i << shift)).to_uint(), i);
+  EXPECT_EQ(hls::class_address<ProfileTraits<P>>(TestFixture::value_from_raw(TestFixture::kMaxRaw)).to_uint(),
             (1u << P.tf_addr_bits) - 1u);
 }
 
@@ -231,15 +231,15 @@ TYPED_TEST(ClassificationTableTest, OpacityCorrectionAndSaturation) {
 }
 
 // §4.3: the vizard2 SRAM layout.
-using Vizard2Params = hls::ClassificationParams<kVizard2>;
+using Vizard2Params = hls::ClassificationParams<ProfileTraits<kVizard2>>;
 
 TEST(ClassificationVizard2, TableIsTwoKilobytesOfTwo32BitWordsPerEntry) {
   static_assert(Vizard2Params::entries == 256);
   static_assert(Vizard2Params::entry_bits + 8 == 64, "56 payload bits + 8 reserved");
   const ref::TransferFunction tf = scene_tf(kVizard2);
   const std::vector<bt::ClassEntry> raw = bt::make_class_table(kVizard2, tf, kStep);
-  auto table = std::make_unique<hls::ClassificationTable<kVizard2>>();
-  ASSERT_TRUE(hls::host::load_class_table<kVizard2>(*table, raw));
+  auto table = std::make_unique<hls::ClassificationTable<ProfileTraits<kVizard2>>>();
+  ASSERT_TRUE(hls::host::load_class_table<ProfileTraits<kVizard2>>(*table, raw));
   std::vector<std::uint32_t> sram;  // the two SRAMs' image, entry by entry
   for (int i = 0; i < Vizard2Params::entries; ++i) {
     const hls::Vizard2Words w = hls::pack_vizard2_words(table->entry[i]);
@@ -254,7 +254,7 @@ TEST(ClassificationVizard2, TableIsTwoKilobytesOfTwo32BitWordsPerEntry) {
     EXPECT_EQ(sram[2 * static_cast<std::size_t>(i) + 1] & 0xffu, 0u)
         << "reserved bits, entry " << i;
     const bt::ClassEntry back =
-        hls::host::entry_to_raw<kVizard2>(hls::unpack_vizard2_words<kVizard2>(w));
+        hls::host::entry_to_raw<ProfileTraits<kVizard2>>(hls::unpack_vizard2_words<ProfileTraits<kVizard2>>(w));
     const bt::ClassEntry& want = raw[static_cast<std::size_t>(i)];
     ASSERT_TRUE(back.r == want.r && back.g == want.g && back.b == want.b &&
                 back.alpha == want.alpha && back.ka == want.ka && back.kd == want.kd &&
@@ -267,7 +267,7 @@ TEST(ClassificationVizard2, FieldPositionsAreThoseOfTheSpec) {
   bt::ClassEntry raw;
   raw.r = 0x12, raw.g = 0x34, raw.b = 0x56, raw.alpha = 0x78;
   raw.ka = 0x9a, raw.kd = 0xbc, raw.ks = 0xde;
-  const hls::Vizard2Words w = hls::pack_vizard2_words(hls::host::entry_from_raw<kVizard2>(raw));
+  const hls::Vizard2Words w = hls::pack_vizard2_words(hls::host::entry_from_raw<ProfileTraits<kVizard2>>(raw));
   EXPECT_EQ(w.word[0].to_uint64(), 0x12345678u);
   EXPECT_EQ(w.word[1].to_uint64(), 0x9abcde00u);
 }
@@ -280,13 +280,13 @@ TEST(ClassificationVizard2, PackUnpackRoundTrips) {
     const std::uint32_t w0 = any(rng), w1 = any(rng);
     w.word[0] = w0;
     w.word[1] = w1;  // reserved bits set: unpack must ignore them
-    const hls::ClassEntry<kVizard2> e = hls::unpack_vizard2_words<kVizard2>(w);
+    const hls::ClassEntry<ProfileTraits<kVizard2>> e = hls::unpack_vizard2_words<ProfileTraits<kVizard2>>(w);
     const hls::Vizard2Words again = hls::pack_vizard2_words(e);
     ASSERT_EQ(again.word[0].to_uint64(), w0);
     ASSERT_EQ(again.word[1].to_uint64(), w1 & 0xffffff00u);  // reserved written as zero
-    const bt::ClassEntry raw = hls::host::entry_to_raw<kVizard2>(e);
+    const bt::ClassEntry raw = hls::host::entry_to_raw<ProfileTraits<kVizard2>>(e);
     const bt::ClassEntry back =
-        hls::host::entry_to_raw<kVizard2>(hls::unpack_vizard2_words<kVizard2>(again));
+        hls::host::entry_to_raw<ProfileTraits<kVizard2>>(hls::unpack_vizard2_words<ProfileTraits<kVizard2>>(again));
     ASSERT_TRUE(back.r == raw.r && back.g == raw.g && back.b == raw.b && back.alpha == raw.alpha &&
                 back.ka == raw.ka && back.kd == raw.kd && back.ks == raw.ks);
   }

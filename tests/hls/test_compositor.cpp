@@ -43,11 +43,11 @@ template <class T>
 class PixelBackEndTest : public ::testing::Test {
  protected:
   static constexpr PrecisionProfile kP = T::value;
-  using CP = hls::CompositorParams<kP>;
+  using CP = hls::CompositorParams<ProfileTraits<kP>>;
   using acc_t = typename CP::acc_t;
   using alpha_t = typename CP::alpha_t;
   using shade_t = typename CP::shade_t;
-  using entry_t = typename hls::ReflectanceParams<kP>::entry_t;
+  using entry_t = typename hls::ReflectanceParams<ProfileTraits<kP>>::entry_t;
 
   // A fixed or integer type holding a raw unsigned integer.
   template <class X>
@@ -98,18 +98,18 @@ class PixelBackEndTest : public ::testing::Test {
     for (double& c : s.C) c = std::ldexp(static_cast<double>(uniform(a)), -kP.acc_bits);
     return s;
   }
-  static hls::Accumulator<kP> to_hls(const bt::BtAccumulator& s) {
-    hls::Accumulator<kP> acc;
+  static hls::Accumulator<ProfileTraits<kP>> to_hls(const bt::BtAccumulator& s) {
+    hls::Accumulator<ProfileTraits<kP>> acc;
     for (int k = 0; k < 3; ++k) acc.C[k] = acc_t(s.C[static_cast<std::size_t>(k)]);
     acc.A = acc_t(s.A);
     return acc;
   }
-  static hls::ShadedColor<kP> to_hls(const C3& c) {
-    hls::ShadedColor<kP> out;
+  static hls::ShadedColor<ProfileTraits<kP>> to_hls(const C3& c) {
+    hls::ShadedColor<ProfileTraits<kP>> out;
     for (int k = 0; k < 3; ++k) out.c[k] = shade_t(c[static_cast<std::size_t>(k)]);
     return out;
   }
-  static bool same(const hls::Accumulator<kP>& h, const bt::BtAccumulator& b) {
+  static bool same(const hls::Accumulator<ProfileTraits<kP>>& h, const bt::BtAccumulator& b) {
     return h.C[0].to_double() == b.C[0] && h.C[1].to_double() == b.C[1] &&
            h.C[2].to_double() == b.C[2] && h.A.to_double() == b.A;
   }
@@ -135,13 +135,13 @@ TYPED_TEST(PixelBackEndTest, ShaderMatchesBitTrue) {
   for (int n = 0; n < 100000; ++n) {
     const bt::ClassEntry raw = this->random_entry();
     const std::uint64_t d = this->raw_field(rbits), s = this->raw_field(rbits);
-    const hls::ClassEntry<P> e = hls::host::entry_from_raw<P>(raw);
-    hls::Reflect<P> r;
+    const hls::ClassEntry<ProfileTraits<P>> e = hls::host::entry_from_raw<ProfileTraits<P>>(raw);
+    hls::Reflect<ProfileTraits<P>> r;
     r.D = TestFixture::template from_raw<typename TestFixture::entry_t>(d);
     r.S = TestFixture::template from_raw<typename TestFixture::entry_t>(s);
     const bt::BtReflect br{r.D.to_double(), r.S.to_double()};
     for (const bool shaded : {true, false}) {
-      const hls::ShadedColor<P> got = hls::shade(e, r, shaded);
+      const hls::ShadedColor<ProfileTraits<P>> got = hls::shade(e, r, shaded);
       const C3 want = bt::bt_shade(P, raw, br, shaded);
       for (int k = 0; k < 3; ++k)
         ASSERT_EQ(got.c[k].to_double(), want[static_cast<std::size_t>(k)])
@@ -160,15 +160,15 @@ TYPED_TEST(PixelBackEndTest, ShaderWithinDerivedBoundOfFloatShade) {
   double worst = 0.0;
   for (int n = 0; n < 50000; ++n) {
     const bt::ClassEntry raw = this->random_entry();
-    const hls::ClassEntry<P> e = hls::host::entry_from_raw<P>(raw);
-    hls::Reflect<P> r;
+    const hls::ClassEntry<ProfileTraits<P>> e = hls::host::entry_from_raw<ProfileTraits<P>>(raw);
+    hls::Reflect<ProfileTraits<P>> r;
     r.D = TestFixture::template from_raw<typename TestFixture::entry_t>(this->raw_field(rbits));
     r.S = TestFixture::template from_raw<typename TestFixture::entry_t>(this->raw_field(rbits));
     ref::Classified c;
     c.color = {e.r.to_double(), e.g.to_double(), e.b.to_double()};
     c.ka = e.ka.to_double(), c.kd = e.kd.to_double(), c.ks = e.ks.to_double();
     const ref::Vec3 want = ref::shade(c, ref::Reflectance{r.D.to_double(), r.S.to_double()});
-    const hls::ShadedColor<P> got = hls::shade(e, r, true);
+    const hls::ShadedColor<ProfileTraits<P>> got = hls::shade(e, r, true);
     for (int k = 0; k < 3; ++k) {
       const double err = std::abs(got.c[k].to_double() - want[k]);
       ASSERT_LE(err, bound) << "n " << n << " channel " << k;
@@ -186,16 +186,16 @@ TYPED_TEST(PixelBackEndTest, ShaderClosedForms) {
   raw.g = 0;
   raw.b = 1u << (P.color_bits - 1);
   raw.ka = static_cast<std::uint32_t>(TestFixture::top(P.k_bits));
-  const hls::ClassEntry<P> e = hls::host::entry_from_raw<P>(raw);
-  hls::Reflect<P> r;
+  const hls::ClassEntry<ProfileTraits<P>> e = hls::host::entry_from_raw<ProfileTraits<P>>(raw);
+  hls::Reflect<ProfileTraits<P>> r;
   r.D = 0;
   r.S = 0;
-  const hls::ShadedColor<P> flat = hls::shade(e, r, false);
+  const hls::ShadedColor<ProfileTraits<P>> flat = hls::shade(e, r, false);
   EXPECT_EQ(flat.c[0].to_double(), bt::u_frac(1.0 - TestFixture::lsb(P.color_bits), P.shade_bits));
   EXPECT_EQ(flat.c[1].to_double(), 0.0);
   EXPECT_EQ(flat.c[2].to_double(), 0.5);
   const double intensity = bt::q_rnd(1.0 - TestFixture::lsb(P.k_bits), P.shade_bits);
-  const hls::ShadedColor<P> lit = hls::shade(e, r, true);
+  const hls::ShadedColor<ProfileTraits<P>> lit = hls::shade(e, r, true);
   EXPECT_EQ(lit.c[2].to_double(), bt::q_rnd(0.5 * intensity, P.shade_bits));
 }
 
@@ -207,7 +207,7 @@ TYPED_TEST(PixelBackEndTest, CompositeStepMatchesBitTrue) {
     const bt::BtAccumulator s = this->random_state();
     const double alpha = this->random_alpha();
     const C3 c = this->random_colour();
-    hls::Accumulator<P> h = TestFixture::to_hls(s);
+    hls::Accumulator<ProfileTraits<P>> h = TestFixture::to_hls(s);
     bt::BtAccumulator b = s;
     const bool hc = hls::composite(h, TestFixture::to_hls(c), typename TestFixture::alpha_t(alpha));
     const bool bc = bt::bt_composite(P, b, c, alpha);
@@ -222,13 +222,13 @@ TYPED_TEST(PixelBackEndTest, EveryAccumulatorValueQuantizesLikeBitTrue) {
   const std::uint64_t one = std::uint64_t{1} << P.acc_bits;
   for (std::uint64_t raw = 0; raw <= one; ++raw) {
     const auto x = TestFixture::template from_raw<typename TestFixture::acc_t>(raw);
-    ASSERT_EQ(hls::quantize_output<P>(x).to_uint(), bt::bt_output_channel(P, x.to_double()))
+    ASSERT_EQ(hls::quantize_output<ProfileTraits<P>>(x).to_uint(), bt::bt_output_channel(P, x.to_double()))
         << "x = " << x.to_double();
   }
   // And whole pixels.
   for (int n = 0; n < 10000; ++n) {
     const bt::BtAccumulator s = this->random_state();
-    const hls::OutputPixel<P> got = hls::output(TestFixture::to_hls(s));
+    const hls::OutputPixel<ProfileTraits<P>> got = hls::output(TestFixture::to_hls(s));
     const std::array<std::uint32_t, 4> want = bt::bt_output(P, s);
     for (int k = 0; k < 4; ++k) ASSERT_EQ(got.ch[k].to_uint(), want[static_cast<std::size_t>(k)]);
   }
@@ -241,7 +241,7 @@ TYPED_TEST(PixelBackEndTest, ErtMatchesBitTrue) {
   for (int n = 0; n < 20000; ++n) {
     fs.regs.ert_enabled = n % 4 != 0;
     fs.regs.ert_threshold = static_cast<bt::Raw>(this->uniform(std::uint64_t{1} << P.acc_bits));
-    const hls::CompositorRegisters<P> regs = hls::host::compositor_registers<P>(fs.regs);
+    const hls::CompositorRegisters<ProfileTraits<P>> regs = hls::host::compositor_registers<ProfileTraits<P>>(fs.regs);
     const bt::BtAccumulator s = this->random_state();
     ASSERT_EQ(hls::ert_reached(TestFixture::to_hls(s), regs), bt::bt_ert(fs, s));
   }
@@ -261,16 +261,16 @@ TYPED_TEST(PixelBackEndTest, MipMatchesBitTrue) {
                      ? bt::to_raw(bt::q_rnd(1.0 / (std::ldexp(1.0, bits) - 1.0), P.dir_frac_bits),
                                   P.dir_frac_bits)
                      : static_cast<bt::Raw>(this->uniform(std::uint64_t{1} << P.dir_frac_bits));
-    const hls::CompositorRegisters<P> regs = hls::host::compositor_registers<P>(fs.regs);
+    const hls::CompositorRegisters<ProfileTraits<P>> regs = hls::host::compositor_registers<ProfileTraits<P>>(fs.regs);
     value_t m_hls = TestFixture::template from_raw<value_t>(0);
     double m_bt = 0.0;
     for (int j = 0; j < 4; ++j) {
       const std::uint64_t raw = this->uniform(max_value_raw);
-      hls::mip_update<P>(m_hls, TestFixture::template from_raw<value_t>(raw));
+      hls::mip_update<ProfileTraits<P>>(m_hls, TestFixture::template from_raw<value_t>(raw));
       m_bt = bt::bt_mip_max(m_bt, std::ldexp(static_cast<double>(raw), -P.sample_frac_bits));
     }
     ASSERT_EQ(m_hls.to_double(), m_bt);
-    const hls::Accumulator<P> px = hls::mip_pixel<P>(m_hls, regs);
+    const hls::Accumulator<ProfileTraits<P>> px = hls::mip_pixel<ProfileTraits<P>>(m_hls, regs);
     ASSERT_TRUE(TestFixture::same(px, bt::bt_mip_pixel(fs, m_bt))) << "M " << m_bt;
   }
 }
@@ -285,7 +285,7 @@ TYPED_TEST(PixelBackEndTest, CompositeStepWithinDerivedBoundOfFloat) {
     const bt::BtAccumulator s = this->random_state();
     const double alpha = this->random_alpha();
     const C3 c = this->random_colour();
-    hls::Accumulator<P> got = TestFixture::to_hls(s);
+    hls::Accumulator<ProfileTraits<P>> got = TestFixture::to_hls(s);
     hls::composite(got, TestFixture::to_hls(c), typename TestFixture::alpha_t(alpha));
     ref::Accumulator want;
     want.color = {s.C[0], s.C[1], s.C[2]};
@@ -311,7 +311,7 @@ TYPED_TEST(PixelBackEndTest, RaysWithinDerivedBoundOfFloatInOutputLsbs) {
   for (int ray = 0; ray < 2000; ++ray) {
     const int n = 1 + static_cast<int>(this->uniform(299));
     const double alpha_scale = std::ldexp(1.0, -static_cast<int>(this->uniform(6)));
-    hls::Accumulator<P> fixed;
+    hls::Accumulator<ProfileTraits<P>> fixed;
     bt::BtAccumulator bit_true;
     ref::Accumulator flt;
     double ea = 0.0;
@@ -326,7 +326,7 @@ TYPED_TEST(PixelBackEndTest, RaysWithinDerivedBoundOfFloatInOutputLsbs) {
       ea = ea * (1.0 - alpha) + h;
     }
     ASSERT_TRUE(TestFixture::same(fixed, bit_true)) << "ray " << ray;
-    const hls::OutputPixel<P> out = hls::output(fixed);
+    const hls::OutputPixel<ProfileTraits<P>> out = hls::output(fixed);
     const double want[4] = {flt.color[0], flt.color[1], flt.color[2], flt.alpha};
     const double e[4] = {ec[0], ec[1], ec[2], ea};
     for (int k = 0; k < 4; ++k) {
@@ -350,7 +350,7 @@ TYPED_TEST(PixelBackEndTest, ConstantAlphaReachesClosedForm) {
                  1.0 - TestFixture::lsb(P.shade_bits)};
   for (const double a_in : {0.001, 0.01, 0.05, 0.2, 0.5, 0.9, 0.999}) {
     const double a = bt::u_frac(std::max(a_in, TestFixture::lsb(P.alpha_bits)), P.alpha_bits);
-    hls::Accumulator<P> acc;
+    hls::Accumulator<ProfileTraits<P>> acc;
     for (int n = 1; n <= 600; ++n) {
       hls::composite(acc, TestFixture::to_hls(white), typename TestFixture::alpha_t(a));
       const double exact = 1.0 - std::pow(1.0 - a, n);
@@ -375,10 +375,10 @@ TYPED_TEST(PixelBackEndTest, ErtStopsAtTheFirstSampleReachingTheThreshold) {
   for (const double threshold : {0.0, 0.5, 0.9, 0.95, 0.98}) {
     fs.regs.ert_threshold = bt::to_raw(bt::q_rnd(threshold, P.acc_bits), P.acc_bits);
     const double t_q = bt::q_rnd(threshold, P.acc_bits);
-    const hls::CompositorRegisters<P> regs = hls::host::compositor_registers<P>(fs.regs);
+    const hls::CompositorRegisters<ProfileTraits<P>> regs = hls::host::compositor_registers<ProfileTraits<P>>(fs.regs);
     for (const double a_in : {0.01, 0.1, 0.3, 0.7}) {
       const double a = bt::u_frac(a_in, P.alpha_bits);
-      hls::Accumulator<P> acc;
+      hls::Accumulator<ProfileTraits<P>> acc;
       bt::BtAccumulator b;
       int stop = -1, samples = 0;
       for (int j = 0; j < 5000 && stop < 0; ++j) {
@@ -420,10 +420,10 @@ TYPED_TEST(PixelBackEndTest, ErtStopsAtTheFirstSampleReachingTheThreshold) {
 TYPED_TEST(PixelBackEndTest, OutputClosedForms) {
   constexpr PrecisionProfile P = TestFixture::kP;
   const unsigned full = (1u << P.out_bits) - 1u;
-  const hls::OutputPixel<P> miss = hls::output(hls::Accumulator<P>{});
+  const hls::OutputPixel<ProfileTraits<P>> miss = hls::output(hls::Accumulator<ProfileTraits<P>>{});
   for (int k = 0; k < 4; ++k) EXPECT_EQ(miss.ch[k].to_uint(), 0u);
 
-  hls::Accumulator<P> acc;
+  hls::Accumulator<ProfileTraits<P>> acc;
   const C3 white{1.0, 1.0, 1.0};  // saturates to 1 - 2^-shade_bits
   EXPECT_FALSE(hls::composite(acc, TestFixture::to_hls(white), typename TestFixture::alpha_t(0.0)));
   EXPECT_TRUE(TestFixture::same(acc, bt::BtAccumulator{}));
@@ -431,7 +431,7 @@ TYPED_TEST(PixelBackEndTest, OutputClosedForms) {
     hls::composite(acc, TestFixture::to_hls(white),
                    typename TestFixture::alpha_t(1.0 - TestFixture::lsb(P.alpha_bits)));
   EXPECT_EQ(acc.A.to_double(), 1.0);
-  const hls::OutputPixel<P> px = hls::output(acc);
+  const hls::OutputPixel<ProfileTraits<P>> px = hls::output(acc);
   EXPECT_EQ(px.ch[3].to_uint(), full);
   // The colour reaches 1 - 2^-shade_bits: full scale once shade_bits > out_bits.
   const unsigned white_out = bt::bt_output_channel(P, 1.0 - TestFixture::lsb(P.shade_bits));
@@ -442,9 +442,9 @@ TYPED_TEST(PixelBackEndTest, OutputClosedForms) {
   fs.profile = P;
   fs.regs.RM = bt::to_raw(bt::q_rnd(1.0 / 255.0, P.dir_frac_bits), P.dir_frac_bits);
   using value_t = typename TestFixture::CP::value_t;
-  const hls::Accumulator<P> mip =
-      hls::mip_pixel<P>(value_t(255.0), hls::host::compositor_registers<P>(fs.regs));
-  const hls::OutputPixel<P> grey = hls::output(mip);
+  const hls::Accumulator<ProfileTraits<P>> mip =
+      hls::mip_pixel<ProfileTraits<P>>(value_t(255.0), hls::host::compositor_registers<ProfileTraits<P>>(fs.regs));
+  const hls::OutputPixel<ProfileTraits<P>> grey = hls::output(mip);
   for (int k = 0; k < 4; ++k) EXPECT_EQ(grey.ch[k].to_uint(), full);
 }
 

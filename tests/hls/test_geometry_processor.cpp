@@ -246,18 +246,18 @@ void check_bit_exact(const Case& c) {
   SCOPED_TRACE(c.name);
   const auto frame = make_frame(c);
   const BitTrueFrame bt = setup(P, *frame);
-  const auto regs = hls::host::load_geometry_registers<P>(bt.regs);
-  auto rom = std::make_unique<hls::RsqrtRom<P>>();
-  hls::host::load_rsqrt_rom<P>(bt.seed, *rom);
-  using G = hls::GeometryParams<P>;
+  const auto regs = hls::host::load_geometry_registers<ProfileTraits<P>>(bt.regs);
+  auto rom = std::make_unique<hls::RsqrtRom<ProfileTraits<P>>>();
+  hls::host::load_rsqrt_rom<ProfileTraits<P>>(bt.seed, *rom);
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   int hits = 0;
   for (int py : frame->ys)
     for (int px : frame->xs) {
       SCOPED_TRACE(::testing::Message() << "pixel (" << px << ", " << py << ")");
       const bittrue::BtRay b = bittrue::bt_ray_setup(P, bt.regs, bt.seed, px, py);
-      const hls::RaySetup<P> h = regs.perspective
-                                     ? hls::ray_setup_perspective<P>(regs, rom->seed, px, py)
-                                     : hls::ray_setup_parallel<P>(regs, px, py);
+      const hls::RaySetup<ProfileTraits<P>> h = regs.perspective
+                                     ? hls::ray_setup_perspective<ProfileTraits<P>>(regs, rom->seed, px, py)
+                                     : hls::ray_setup_parallel<ProfileTraits<P>>(regs, px, py);
       ASSERT_EQ(h.hit, b.hit);
       ASSERT_EQ(h.n.to_uint64(), b.n);
       ASSERT_EQ(h.k_in.to_double(), b.k_in);
@@ -270,8 +270,8 @@ void check_bit_exact(const Case& c) {
         // The rsqrt unit on its own.
         typename G::dir_t d[3];
         typename G::unit_t u[3];
-        hls::pixel_direction<P>(regs, px, py, d);
-        hls::normalize_direction<P>(d, rom->seed, u);
+        hls::pixel_direction<ProfileTraits<P>>(regs, px, py, d);
+        hls::normalize_direction<ProfileTraits<P>>(d, rom->seed, u);
         const auto bu = bittrue::bt_unit_direction(P, bt.regs, bt.seed, px, py);
         for (int k = 0; k < 3; ++k) ASSERT_EQ(u[k].to_double(), bu[static_cast<std::size_t>(k)]);
       }
@@ -281,7 +281,7 @@ void check_bit_exact(const Case& c) {
       typename G::pos_t p[3] = {h.p0[0], h.p0[1], h.p0[2]};
       std::array<double, 3> q = b.p0;
       for (std::uint64_t j = 1; j < b.n; ++j) {
-        hls::step_position<P>(p, h.s);
+        hls::step_position<ProfileTraits<P>>(p, h.s);
         q = bittrue::bt_step(q, b.s);
       }
       for (int k = 0; k < 3; ++k) ASSERT_EQ(p[k].to_double(), q[static_cast<std::size_t>(k)]);
@@ -373,10 +373,10 @@ void check_against_float(const Case& c, Measured& m) {
   SCOPED_TRACE(c.name);
   const auto frame = make_frame(c);
   const BitTrueFrame bt = setup(P, *frame);
-  const auto regs = hls::host::load_geometry_registers<P>(bt.regs);
-  auto rom = std::make_unique<hls::RsqrtRom<P>>();
-  hls::host::load_rsqrt_rom<P>(bt.seed, *rom);
-  using G = hls::GeometryParams<P>;
+  const auto regs = hls::host::load_geometry_registers<ProfileTraits<P>>(bt.regs);
+  auto rom = std::make_unique<hls::RsqrtRom<ProfileTraits<P>>>();
+  hls::host::load_rsqrt_rom<ProfileTraits<P>>(bt.seed, *rom);
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   const Bounds bounds = derive_bounds(P);
   const ref::CameraFrame& cam = frame->in.camera;
   const ref::RenderVolume& rv = frame->in.volume;
@@ -394,7 +394,7 @@ void check_against_float(const Case& c, Measured& m) {
     for (int px : frame->xs) {
       SCOPED_TRACE(::testing::Message() << "pixel (" << px << ", " << py << ")");
       ++m.rays;
-      const hls::RaySetup<P> h = hls::ray_setup<P>(regs, rom->seed, px, py);
+      const hls::RaySetup<ProfileTraits<P>> h = hls::ray_setup<ProfileTraits<P>>(regs, rom->seed, px, py);
       const ref::Ray ray = ref::primary_ray(cam, px, py);
       const std::optional<ref::Segment> seg = ref::clip(ray, rv.world_box);
 
@@ -403,8 +403,8 @@ void check_against_float(const Case& c, Measured& m) {
       if (perspective) {
         typename G::dir_t d[3];
         typename G::unit_t u[3];
-        hls::pixel_direction<P>(regs, px, py, d);
-        hls::normalize_direction<P>(d, rom->seed, u);
+        hls::pixel_direction<ProfileTraits<P>>(regs, px, py, d);
+        hls::normalize_direction<ProfileTraits<P>>(d, rom->seed, u);
         const Vec3 uv(u[0].to_double(), u[1].to_double(), u[2].to_double());
         const double err = std::fabs(glm::length(uv) - 1.0);
         EXPECT_LE(err, bounds.eps_norm);
@@ -535,7 +535,7 @@ void check_against_float(const Case& c, Measured& m) {
           m.p0_bound_at_worst = bound;
         }
       }
-      for (std::int64_t j = 1; j < n; ++j) hls::step_position<P>(p, h.s);
+      for (std::int64_t j = 1; j < n; ++j) hls::step_position<ProfileTraits<P>>(p, h.s);
       const double j = static_cast<double>(n - 1);
       for (int a = 0; a < 3; ++a) {
         const auto ia = static_cast<std::size_t>(a);
@@ -583,17 +583,17 @@ TEST(GeometryProcessor, WithinDerivedBoundsOfFloatPrecise) {
 // The rsqrt unit over its whole input range: y·sqrt(m) within the Newton bound.
 template <PrecisionProfile P>
 void check_rsqrt_range() {
-  using G = hls::GeometryParams<P>;
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   const std::vector<Raw> seed = bittrue::make_rsqrt_seed(P);
-  auto rom = std::make_unique<hls::RsqrtRom<P>>();
-  hls::host::load_rsqrt_rom<P>(seed, *rom);
+  auto rom = std::make_unique<hls::RsqrtRom<ProfileTraits<P>>>();
+  hls::host::load_rsqrt_rom<ProfileTraits<P>>(seed, *rom);
   const Bounds b = derive_bounds(P);
   double worst = 0.0;
   const Raw lo = Raw{1} << (P.dir_frac_bits - 2), hi = Raw{1} << P.dir_frac_bits;
   const Raw stride = std::max<Raw>(1, (hi - lo) / 20011);
   for (Raw r = lo; r <= hi; r += stride) {
     const auto m = hls::host::from_raw_bits<typename G::m_t>(r);
-    const double y = hls::rsqrt_newton<P>(m, rom->seed).to_double();
+    const double y = hls::rsqrt_newton<ProfileTraits<P>>(m, rom->seed).to_double();
     worst = std::max(worst, std::fabs(y * std::sqrt(m.to_double()) - 1.0));
   }
   EXPECT_LE(worst, b.eps_norm);

@@ -98,22 +98,22 @@ bittrue::FrameRegisters box_registers(const std::array<int, 3>& dims) {
 // The packed words of a VoxelMemory (§3.4 layout), for hls::PackedBanks.
 template <PrecisionProfile P>
 struct PackedMemory {
-  using word_t = typename hls::InterpolationParams<P>::packed_word_t;
+  using word_t = typename hls::InterpolationParams<ProfileTraits<P>>::packed_word_t;
   std::array<std::vector<word_t>, 8> words;
-  hls::PackedBanks<P> banks;
+  hls::PackedBanks<ProfileTraits<P>> banks;
   explicit PackedMemory(const bittrue::VoxelMemory& mem) {
-    const hls::host::BitTrueBanks<P> view(mem);
+    const hls::host::BitTrueBanks<ProfileTraits<P>> view(mem);
     for (int b = 0; b < 8; ++b) {
       const auto ib = static_cast<std::size_t>(b);
       for (std::size_t w = 0; w < mem.banks[ib].size(); ++w)
-        words[ib].push_back(hls::pack_voxel_word<P>(
-            view.read(b, typename hls::InterpolationParams<P>::word_addr_t(w))));
+        words[ib].push_back(hls::pack_voxel_word<ProfileTraits<P>>(
+            view.read(b, typename hls::InterpolationParams<ProfileTraits<P>>::word_addr_t(w))));
       banks.bank[b] = words[ib].data();
     }
   }
 };
 
-template <PrecisionProfile P>
+template <class P>
 std::array<double, 4> as_doubles(const hls::Sample<P>& s) {
   return {s.value.to_double(), s.g[0].to_double(), s.g[1].to_double(), s.g[2].to_double()};
 }
@@ -131,14 +131,14 @@ template <PrecisionProfile P>
 void check_positions_bit_exact(const BoxCase& c, std::uint32_t seed) {
   SCOPED_TRACE(::testing::Message()
                << "dims " << c.dims[0] << "x" << c.dims[1] << "x" << c.dims[2]);
-  using G = hls::GeometryParams<P>;
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   const std::uint32_t vmax = (std::uint32_t{1} << P.value_bits) - 1u;
   // Full range, so that gradients saturate in the narrow presets too.
   const auto tv = random_volume(c.dims, P.value_bits, vmax, seed);
   const bittrue::VoxelMemory mem = bittrue::make_voxel_memory(P, tv->volume, tv->gradients);
   const bittrue::FrameRegisters fr = box_registers(c.dims, c.lo, c.hi);
-  const auto regs = hls::host::load_geometry_registers<P>(fr);
-  const hls::host::BitTrueBanks<P> view(mem);
+  const auto regs = hls::host::load_geometry_registers<ProfileTraits<P>>(fr);
+  const hls::host::BitTrueBanks<ProfileTraits<P>> view(mem);
   const PackedMemory<P> packed(mem);
 
   std::mt19937 rng(seed + 1);
@@ -168,8 +168,8 @@ void check_positions_bit_exact(const BoxCase& c, std::uint32_t seed) {
     }
     SCOPED_TRACE(::testing::Message() << "p = (" << pd[0] << ", " << pd[1] << ", " << pd[2] << ")");
     const auto b = as_doubles(bittrue::bt_interpolate(P, fr, mem, pd));
-    ASSERT_EQ(as_doubles(hls::interpolate<P>(regs, view, p)), b);
-    ASSERT_EQ(as_doubles(hls::interpolate<P>(regs, packed.banks, p)), b);
+    ASSERT_EQ(as_doubles(hls::interpolate<ProfileTraits<P>>(regs, view, p)), b);
+    ASSERT_EQ(as_doubles(hls::interpolate<ProfileTraits<P>>(regs, packed.banks, p)), b);
   }
 }
 
@@ -226,24 +226,24 @@ void check_rays_bit_exact(ref::Projection projection) {
   const bittrue::FrameRegisters fr = bittrue::make_frame_registers(P, scene, in);
   const std::vector<Raw> seed = bittrue::make_rsqrt_seed(P);
   const bittrue::VoxelMemory mem = bittrue::make_voxel_memory(P, tv->volume, tv->gradients);
-  const auto regs = hls::host::load_geometry_registers<P>(fr);
-  auto rom = std::make_unique<hls::RsqrtRom<P>>();
-  hls::host::load_rsqrt_rom<P>(seed, *rom);
-  const hls::host::BitTrueBanks<P> view(mem);
+  const auto regs = hls::host::load_geometry_registers<ProfileTraits<P>>(fr);
+  auto rom = std::make_unique<hls::RsqrtRom<ProfileTraits<P>>>();
+  hls::host::load_rsqrt_rom<ProfileTraits<P>>(seed, *rom);
+  const hls::host::BitTrueBanks<ProfileTraits<P>> view(mem);
 
   std::uint64_t samples = 0;
   for (int py = 0; py < scene.render.height; ++py)
     for (int px = 0; px < scene.render.width; ++px) {
       SCOPED_TRACE(::testing::Message() << "pixel (" << px << ", " << py << ")");
-      const hls::RaySetup<P> h = hls::ray_setup<P>(regs, rom->seed, px, py);
+      const hls::RaySetup<ProfileTraits<P>> h = hls::ray_setup<ProfileTraits<P>>(regs, rom->seed, px, py);
       const bittrue::BtRay b = bittrue::bt_ray_setup(P, fr, seed, px, py);
       ASSERT_EQ(h.n.to_uint64(), b.n);
       std::vector<std::array<double, 4>> hs;
-      auto sink = [&hs](std::uint64_t, const auto&, const hls::Sample<P>& s) {
-        hs.push_back(as_doubles<P>(s));
+      auto sink = [&hs](std::uint64_t, const auto&, const hls::Sample<ProfileTraits<P>>& s) {
+        hs.push_back(as_doubles(s));
         return true;
       };
-      hls::march_ray<P>(regs, view, h, sink);
+      hls::march_ray<ProfileTraits<P>>(regs, view, h, sink);
       ASSERT_EQ(hs.size(), b.n);
       std::array<double, 3> q = b.p0;
       for (std::uint64_t k = 0; k < b.n; ++k) {
@@ -254,11 +254,11 @@ void check_rays_bit_exact(ref::Projection projection) {
       // The sink ends the ray (early ray termination) after its third sample.
       if (b.n > 3) {
         std::uint64_t consumed = 0;
-        auto stop = [&consumed](std::uint64_t k, const auto&, const hls::Sample<P>&) {
+        auto stop = [&consumed](std::uint64_t k, const auto&, const hls::Sample<ProfileTraits<P>>&) {
           ++consumed;
           return k < 2;
         };
-        hls::march_ray<P>(regs, view, h, stop);
+        hls::march_ray<ProfileTraits<P>>(regs, view, h, stop);
         ASSERT_EQ(consumed, 3u);
       }
     }
@@ -293,12 +293,12 @@ struct InterpStats {
 
 template <PrecisionProfile P>
 void check_against_float(const TestVolume& tv, InterpStats& st, std::uint32_t seed) {
-  using G = hls::GeometryParams<P>;
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   const std::array<int, 3> dims = tv.volume.dims;
   const bittrue::VoxelMemory mem = bittrue::make_voxel_memory(P, tv.volume, tv.gradients);
   const bittrue::FrameRegisters fr = box_registers(dims);
-  const auto regs = hls::host::load_geometry_registers<P>(fr);
-  const hls::host::BitTrueBanks<P> view(mem);
+  const auto regs = hls::host::load_geometry_registers<ProfileTraits<P>>(fr);
+  const hls::host::BitTrueBanks<ProfileTraits<P>> view(mem);
   const double wq = 3.0 * std::ldexp(1.0, -(P.weight_bits + 1));
   const double half_sf = std::ldexp(1.0, -(P.sample_frac_bits + 1));
   const double half_gfb = std::ldexp(1.0, -(P.gradient_frac_bits + 1));
@@ -312,7 +312,7 @@ void check_against_float(const TestVolume& tv, InterpStats& st, std::uint32_t se
       p[k] = hls::host::from_raw_bits<typename G::pos_t>(d(rng));
       pd[static_cast<std::size_t>(k)] = p[k].to_double();
     }
-    const auto h = as_doubles(hls::interpolate<P>(regs, view, p));
+    const auto h = as_doubles(hls::interpolate<ProfileTraits<P>>(regs, view, p));
     const ref::Sample f = ref::interpolate(tv.volume, tv.gradients, Vec3(pd[0], pd[1], pd[2]));
     double vmin = 1e300, vmax = -1e300;
     std::array<double, 3> gmin{1e300, 1e300, 1e300}, gmax{-1e300, -1e300, -1e300};
@@ -369,7 +369,7 @@ TEST(InterpolationProcessor, WithinDerivedBoundOfFloatPrecise) {
 // weight addressing the error is the weight rounding times the slope.
 TEST(InterpolationProcessor, LinearRampWithinWeightRounding) {
   constexpr PrecisionProfile P = kBalanced;
-  using G = hls::GeometryParams<P>;
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   ref::Volume v;
   v.dims = {9, 9, 9};
   v.bits = 12;
@@ -381,8 +381,8 @@ TEST(InterpolationProcessor, LinearRampWithinWeightRounding) {
   const ref::GradientField g = ref::compute_gradients(v, ref::GradientOperator::Central);
   const bittrue::VoxelMemory mem = bittrue::make_voxel_memory(P, v, g);
   const bittrue::FrameRegisters fr = box_registers(v.dims);
-  const auto regs = hls::host::load_geometry_registers<P>(fr);
-  const hls::host::BitTrueBanks<P> view(mem);
+  const auto regs = hls::host::load_geometry_registers<ProfileTraits<P>>(fr);
+  const hls::host::BitTrueBanks<ProfileTraits<P>> view(mem);
   const double half_w = std::ldexp(1.0, -(P.weight_bits + 1));
   const double half_sf = std::ldexp(1.0, -(P.sample_frac_bits + 1));
   std::mt19937 rng(7);
@@ -395,7 +395,7 @@ TEST(InterpolationProcessor, LinearRampWithinWeightRounding) {
       p[k] = hls::host::from_raw_bits<typename G::pos_t>(d(rng));
       exact += slope[k] * p[k].to_double();
     }
-    const double value = hls::interpolate<P>(regs, view, p).value.to_double();
+    const double value = hls::interpolate<ProfileTraits<P>>(regs, view, p).value.to_double();
     ASSERT_LE(std::fabs(value - exact), (100.0 + 30.0 + 7.0) * half_w + half_sf);
   }
 }
@@ -404,7 +404,7 @@ TEST(InterpolationProcessor, LinearRampWithinWeightRounding) {
 template <PrecisionProfile P>
 void check_interleaving(std::array<int, 3> dims) {
   SCOPED_TRACE(::testing::Message() << "dims " << dims[0] << "x" << dims[1] << "x" << dims[2]);
-  using G = hls::GeometryParams<P>;
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   // Voxel (x, y, z) holds id + 1 (so the zero padding is distinguishable) and
   // the gradient (x, y, z).
   ref::Volume v;
@@ -433,8 +433,8 @@ void check_interleaving(std::array<int, 3> dims) {
   EXPECT_EQ(used, v.voxel_count());
 
   const bittrue::FrameRegisters fr = box_registers(dims);
-  const auto regs = hls::host::load_geometry_registers<P>(fr);
-  const hls::host::BitTrueBanks<P> view(mem);
+  const auto regs = hls::host::load_geometry_registers<ProfileTraits<P>>(fr);
+  const hls::host::BitTrueBanks<ProfileTraits<P>> view(mem);
   auto last_cell = [&](int k) {
     return dims[static_cast<std::size_t>(k)] == 1 ? 0 : dims[static_cast<std::size_t>(k)] - 2;
   };
@@ -453,9 +453,9 @@ void check_interleaving(std::array<int, 3> dims) {
               static_cast<Raw>(std::ldexp(c, P.pos_frac_bits)));
           pd[static_cast<std::size_t>(k)] = c;
         }
-        const hls::BankAccess<P> acc = hls::address_generator<P>(regs, p);
-        hls::VoxelWordFx<P> corner[8];
-        hls::gather<P>(view, acc, corner);
+        const hls::BankAccess<ProfileTraits<P>> acc = hls::address_generator<ProfileTraits<P>>(regs, p);
+        hls::VoxelWordFx<ProfileTraits<P>> corner[8];
+        hls::gather<ProfileTraits<P>>(view, acc, corner);
         const std::array<bittrue::BtCorner, 8> bt = bittrue::bt_corners(P, fr, pd);
         std::set<unsigned> banks;
         for (int j = 0; j < 8; ++j) {
@@ -494,7 +494,7 @@ void check_interleaving(std::array<int, 3> dims) {
     p[k] = hls::host::from_raw_bits<typename G::pos_t>(Raw{dims[static_cast<std::size_t>(k)] - 1}
                                                        << P.pos_frac_bits);
   }
-  const hls::BankAccess<P> acc = hls::address_generator<P>(regs, p);
+  const hls::BankAccess<ProfileTraits<P>> acc = hls::address_generator<ProfileTraits<P>>(regs, p);
   for (int b = 0; b < 8; ++b) EXPECT_LT(acc.addr[b].to_uint64(), words);
   for (const bittrue::BtCorner& c : bittrue::bt_corners(P, fr, pd))
     for (std::size_t k = 0; k < 3; ++k)
@@ -515,14 +515,14 @@ TEST(InterpolationProcessor, EveryNeighbourhoodReadsEightDistinctBanks) {
 
 TEST(InterpolationProcessor, PackedWordLayout) {
   constexpr PrecisionProfile P = kVizard2;  // 32-bit word: value + 3 x 8-bit gradient
-  hls::VoxelWordFx<P> w;
+  hls::VoxelWordFx<ProfileTraits<P>> w;
   w.value = 0xA5;
   w.g[0] = -1;
   w.g[1] = 5;
   w.g[2] = -128;
-  const auto packed = hls::pack_voxel_word<P>(w);
+  const auto packed = hls::pack_voxel_word<ProfileTraits<P>>(w);
   EXPECT_EQ(packed.to_uint64(), 0x8005FFA5u);
-  const hls::VoxelWordFx<P> u = hls::unpack_voxel_word<P>(packed);
+  const hls::VoxelWordFx<ProfileTraits<P>> u = hls::unpack_voxel_word<ProfileTraits<P>>(packed);
   EXPECT_EQ(u.value.to_uint64(), 0xA5u);
   EXPECT_EQ(u.g[0].to_double(), -1.0);
   EXPECT_EQ(u.g[1].to_double(), 5.0);

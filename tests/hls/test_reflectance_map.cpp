@@ -111,7 +111,7 @@ template <class T>
 class ReflectanceMapTest : public ::testing::Test {
  protected:
   static constexpr PrecisionProfile kP = T::value;
-  using Params = hls::ReflectanceParams<kP>;
+  using Params = hls::ReflectanceParams<ProfileTraits<kP>>;
   using gradient_t = typename Params::gradient_t;
   static constexpr bool kBilinear = Params::bilinear;
   static constexpr int kRes = kP.rm_res;
@@ -131,8 +131,8 @@ class ReflectanceMapTest : public ::testing::Test {
     shading_ = scene_shading();
     fs_.profile = kP;
     bt::make_reflectance_maps(kP, shading_, fs_.rm_diffuse, fs_.rm_specular);
-    map_ = std::make_unique<hls::ReflectanceMap<kP>>();
-    ASSERT_TRUE(hls::host::load_reflectance_map<kP>(*map_, fs_.rm_diffuse, fs_.rm_specular));
+    map_ = std::make_unique<hls::ReflectanceMap<ProfileTraits<kP>>>();
+    ASSERT_TRUE(hls::host::load_reflectance_map<ProfileTraits<kP>>(*map_, fs_.rm_diffuse, fs_.rm_specular));
     use_world_scale(kWorldScales[0]);
   }
 
@@ -141,21 +141,21 @@ class ReflectanceMapTest : public ::testing::Test {
     for (int k = 0; k < 3; ++k)
       fs_.regs.IS[static_cast<std::size_t>(k)] =
           bt::to_raw(bt::q_rnd(1.0 / ws[k], kP.dir_frac_bits), kP.dir_frac_bits);
-    regs_ = hls::host::reflectance_registers<kP>(fs_.regs);
+    regs_ = hls::host::reflectance_registers<ProfileTraits<kP>>(fs_.regs);
   }
 
-  hls::RmCell<kP> hls_cell(const G3& g) const {
+  hls::RmCell<ProfileTraits<kP>> hls_cell(const G3& g) const {
     const gradient_t gc[3] = {gradient_t(g[0]), gradient_t(g[1]), gradient_t(g[2])};
-    return hls::rm_cell<kP>(gc, regs_);
+    return hls::rm_cell<ProfileTraits<kP>>(gc, regs_);
   }
-  hls::Reflect<kP> hls_reflect(const G3& g) const {
+  hls::Reflect<ProfileTraits<kP>> hls_reflect(const G3& g) const {
     const gradient_t gc[3] = {gradient_t(g[0]), gradient_t(g[1]), gradient_t(g[2])};
     return hls::reflect(*map_, regs_, gc);
   }
 
   // (a) one gradient: cell, in-cell position, D and S, hls against bit-true.
   void expect_same(const G3& g) const {
-    const hls::RmCell<kP> hc = hls_cell(g);
+    const hls::RmCell<ProfileTraits<kP>> hc = hls_cell(g);
     const bt::BtCell bc = bt::bt_rm_cell(kP, fs_.regs.IS, g);
     ASSERT_EQ(hc.valid, bc.valid) << g[0] << ", " << g[1] << ", " << g[2];
     if (bc.valid) {
@@ -166,7 +166,7 @@ class ReflectanceMapTest : public ::testing::Test {
       ASSERT_EQ(static_cast<std::int64_t>(hc.fv.range().to_uint64()), bc.fv)
           << g[0] << ", " << g[1] << ", " << g[2];
     }
-    const hls::Reflect<kP> hr = hls_reflect(g);
+    const hls::Reflect<ProfileTraits<kP>> hr = hls_reflect(g);
     const bt::BtReflect br = bt::bt_reflectance(fs_, g);
     ASSERT_EQ(hr.D.to_double(), br.D) << g[0] << ", " << g[1] << ", " << g[2];
     ASSERT_EQ(hr.S.to_double(), br.S) << g[0] << ", " << g[1] << ", " << g[2];
@@ -223,8 +223,8 @@ class ReflectanceMapTest : public ::testing::Test {
 
   ref::ShadingSetup shading_;
   bt::FrameSetup fs_;
-  std::unique_ptr<hls::ReflectanceMap<kP>> map_;
-  hls::ReflectanceRegisters<kP> regs_;
+  std::unique_ptr<hls::ReflectanceMap<ProfileTraits<kP>>> map_;
+  hls::ReflectanceRegisters<ProfileTraits<kP>> regs_;
   ref::Vec3 world_scale_{1.0};
 };
 TYPED_TEST_SUITE(ReflectanceMapTest, Presets, PresetNames);
@@ -378,11 +378,11 @@ TYPED_TEST(ReflectanceMapTest, WithinDerivedBoundOfFloatReflectance) {
                         TestFixture::on_grid(dir.z * mag));
       const ref::Vec3 gw = g / ws;
       if (glm::length(gw) == 0.0) continue;
-      const hls::RmCell<P> cell = this->hls_cell({g.x, g.y, g.z});
+      const hls::RmCell<ProfileTraits<P>> cell = this->hls_cell({g.x, g.y, g.z});
       ASSERT_TRUE(cell.valid);
       const typename TestFixture::CellRef cr =
           TestFixture::decode(static_cast<int>(cell.index.to_uint()));
-      const hls::Reflect<P> got = this->hls_reflect({g.x, g.y, g.z});
+      const hls::Reflect<ProfileTraits<P>> got = this->hls_reflect({g.x, g.y, g.z});
 
       const ref::Vec3 nt = ref::surface_normal(g, ws);
       const ref::Reflectance want = ref::reflectance(this->shading_, nt);
@@ -515,13 +515,13 @@ TYPED_TEST(ReflectanceMapTest, AxisDirectionsLandInTheCentreOfTheirFace) {
         G3 g = {0.0, 0.0, 0.0};
         // N = -gw points along +axis on face 2m, -axis on face 2m + 1.
         g[static_cast<std::size_t>(face / 2)] = (face & 1) ? mag : -mag;
-        const hls::RmCell<P> cell = this->hls_cell(g);
+        const hls::RmCell<ProfileTraits<P>> cell = this->hls_cell(g);
         ASSERT_TRUE(cell.valid);
         const int c = res / 2;
         const int index = static_cast<int>(cell.index.to_uint());
         EXPECT_EQ(index, TestFixture::entry_index(face, c, c))
             << "face " << face << " magnitude " << mag;
-        const hls::Reflect<P> r = this->hls_reflect(g);
+        const hls::Reflect<ProfileTraits<P>> r = this->hls_reflect(g);
         if (!TestFixture::kBilinear || res % 2 == 0) {
           EXPECT_EQ(cell.fu.to_double(), 0.0);
           EXPECT_EQ(cell.fv.to_double(), 0.0);
@@ -552,7 +552,7 @@ TYPED_TEST(BilinearReflectanceMapTest, CellCentresReadTheMeanOfTheirCorners) {
     for (int j = 0; j < res; ++j)
       for (int i = 0; i < res; ++i) {
         const G3 g = TestFixture::grid_gradient(face, 2 * i + 1, 2 * j + 1);
-        const hls::RmCell<P> cell = this->hls_cell(g);
+        const hls::RmCell<ProfileTraits<P>> cell = this->hls_cell(g);
         const int index = TestFixture::entry_index(face, i, j);
         ASSERT_EQ(static_cast<int>(cell.index.to_uint()), index);
         ASSERT_EQ(cell.fu.to_double(), 0.5);
@@ -560,7 +560,7 @@ TYPED_TEST(BilinearReflectanceMapTest, CellCentresReadTheMeanOfTheirCorners) {
         const int quad[4] = {index, index + 1, index + side, index + side + 1};
         std::int64_t sd = 0, ss = 0;
         for (const int q : quad) sd += this->raw_d(q), ss += this->raw_s(q);
-        const hls::Reflect<P> r = this->hls_reflect(g);
+        const hls::Reflect<ProfileTraits<P>> r = this->hls_reflect(g);
         ASSERT_EQ(r.D.to_double(), TestFixture::from_raw((sd + 2) >> 2));
         ASSERT_EQ(r.S.to_double(), TestFixture::from_raw((ss + 2) >> 2));
         this->expect_same(g);
@@ -579,14 +579,14 @@ TYPED_TEST(BilinearReflectanceMapTest, CornerDirectionsReadTheirOwnEntry) {
       for (int i = 0; i <= res; ++i) {
         const G3 g = TestFixture::grid_gradient(face, 2 * i, 2 * j);
         const int index = TestFixture::entry_index(face, i, j);
-        const hls::RmCell<P> cell = this->hls_cell(g);
+        const hls::RmCell<ProfileTraits<P>> cell = this->hls_cell(g);
         const bool interior = i > 0 && i < res && j > 0 && j < res;
         if (interior) {
           ASSERT_EQ(static_cast<int>(cell.index.to_uint()), index);
           ASSERT_EQ(cell.fu.to_double(), 0.0);
           ASSERT_EQ(cell.fv.to_double(), 0.0);
         }
-        const hls::Reflect<P> r = this->hls_reflect(g);
+        const hls::Reflect<ProfileTraits<P>> r = this->hls_reflect(g);
         ASSERT_EQ(r.D.to_double(), TestFixture::from_raw(this->raw_d(index)))
             << "face " << face << " corner " << i << ", " << j;
         ASSERT_EQ(r.S.to_double(), TestFixture::from_raw(this->raw_s(index)))
@@ -637,7 +637,7 @@ TYPED_TEST(ReflectanceMapTest, ZeroGradientHasNoNormalAndNoLight) {
 
 // VIZARD II's maps: 6·16² cells x 8 bits x 2 tables = 3 KB.
 TEST(ReflectanceMapVizard2, TwoTablesAreThreeKilobytes) {
-  using Params = hls::ReflectanceParams<kVizard2>;
+  using Params = hls::ReflectanceParams<ProfileTraits<kVizard2>>;
   static_assert(!Params::bilinear);
   static_assert(Params::entries == 6 * 16 * 16);
   static_assert(Params::entry_bits == 8);
@@ -654,8 +654,8 @@ TEST(ReflectanceMapVizard2, TwoTablesAreThreeKilobytes) {
 // Bilinear maps hold the corner grid, 6·(rm_res+1)² entries per table (§5.5): balanced
 // 6·33² x 14 bits x 2 tables = 22,869 bytes, precise 6·65² x 18 bits x 2 = 114,075 bytes.
 TEST(ReflectanceMapBilinear, TablesHoldTheCornerGrid) {
-  using B = hls::ReflectanceParams<kBalanced>;
-  using Pr = hls::ReflectanceParams<kPrecise>;
+  using B = hls::ReflectanceParams<ProfileTraits<kBalanced>>;
+  using Pr = hls::ReflectanceParams<ProfileTraits<kPrecise>>;
   static_assert(B::bilinear && B::entries == 6 * 33 * 33 && B::entry_bits == 14);
   static_assert(Pr::bilinear && Pr::entries == 6 * 65 * 65 && Pr::entry_bits == 18);
   EXPECT_EQ(2 * B::entries * B::entry_bits / 8, 22869);

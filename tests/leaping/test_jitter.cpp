@@ -54,7 +54,7 @@ TEST(Jitter, EveryEngineStartsEachRayAtTheSameOffset) {
   const ref::RenderInputs in_on = ref::make_render_inputs(on, sv.volume, sv.gradients, on.camera.pose);
   constexpr PrecisionProfile P = kBalanced;
   ASSERT_EQ(on.precision, P);
-  const auto frame = hls::host::load_frame_state<P>(fs_on, "test");
+  const auto frame = hls::host::load_frame_state<ProfileTraits<P>>(fs_on, "test");
   const int tf = P.t_frac_bits;
   int moved = 0, hits = 0;
   for (int y = 0; y < 20; ++y)
@@ -81,7 +81,7 @@ TEST(Jitter, EveryEngineStartsEachRayAtTheSameOffset) {
         EXPECT_GT(a.k_in + j, a.k_out);
       }
       // hls: the same ray set-up bits.
-      const hls::RaySetup<P> h = hls::ray_setup<P>(frame->geometry, frame->rsqrt.seed, x, y);
+      const hls::RaySetup<ProfileTraits<P>> h = hls::ray_setup<ProfileTraits<P>>(frame->geometry, frame->rsqrt.seed, x, y);
       ASSERT_EQ(h.hit, b.hit);
       if (!b.hit) continue;
       EXPECT_EQ(h.k_in.to_double(), b.k_in);

@@ -174,10 +174,10 @@ TEST(MinMaxBlocks, EmptinessIsTheOpacityOverTheBlocksValueRange) {
     t.nonzero_prefix = bittrue::nonzero_prefix(table);
     fs.leap = t;
     // The hls unit's test on the same block memory word and table.
-    hls::LeapRegisters<kBalanced> lr;
-    auto memory = std::make_unique<hls::MinMaxMemory<kBalanced>>();
-    hls::host::load_leap<kBalanced>(t, lr, *memory, "test");
-    const bool hls_empty = hls::block_empty<kBalanced>(lr, memory->block[b0]);
+    hls::LeapRegisters<ProfileTraits<kBalanced>> lr;
+    auto memory = std::make_unique<hls::MinMaxMemory<ProfileTraits<kBalanced>>>();
+    hls::host::load_leap<ProfileTraits<kBalanced>>(t, lr, *memory, "test");
+    const bool hls_empty = hls::block_empty<ProfileTraits<kBalanced>>(lr, memory->block[b0]);
     EXPECT_EQ(hls_empty, bittrue::bt_block_empty(fs, b0)) << nonzero_entry;
     return hls_empty;
   };

@@ -186,12 +186,12 @@ ref::Elaboration full(const PrecisionProfile& p) {
 
 template <PrecisionProfile P>
 void expect_kernel_widths() {
-  using G = hls::GeometryParams<P>;
-  using I = hls::InterpolationParams<P>;
-  using R = hls::ReflectanceParams<P>;
-  using S = hls::ShaderParams<P>;
-  using C = hls::CompositorParams<P>;
-  using K = hls::ClassificationParams<P>;
+  using G = hls::GeometryParams<ProfileTraits<P>>;
+  using I = hls::InterpolationParams<ProfileTraits<P>>;
+  using R = hls::ReflectanceParams<ProfileTraits<P>>;
+  using S = hls::ShaderParams<ProfileTraits<P>>;
+  using C = hls::CompositorParams<ProfileTraits<P>>;
+  using K = hls::ClassificationParams<ProfileTraits<P>>;
   const auto u = cosim::unit_operators(full(P));
   EXPECT_EQ(find_op(u, "s = u·K").a, G::unit_t::width);
   EXPECT_EQ(find_op(u, "s = u·K").b, G::kreg_t::width);

@@ -44,7 +44,7 @@ bittrue::VoxelMemory numbered_memory(std::array<int, 3> dims) {
 }
 
 template <PrecisionProfile P>
-std::tuple<unsigned, std::int64_t, std::int64_t, std::int64_t> fields(const hls::VoxelWordFx<P>& v) {
+std::tuple<unsigned, std::int64_t, std::int64_t, std::int64_t> fields(const hls::VoxelWordFx<ProfileTraits<P>>& v) {
   return {v.value.to_uint(), v.g[0].range().to_uint64(), v.g[1].range().to_uint64(),
           v.g[2].range().to_uint64()};
 }
@@ -53,12 +53,12 @@ template <PrecisionProfile P>
 void check_neighbourhoods(std::array<int, 3> dims) {
   SCOPED_TRACE(::testing::Message() << "dims " << dims[0] << "x" << dims[1] << "x" << dims[2]);
   const bittrue::VoxelMemory mem = numbered_memory(dims);
-  const Vizard2Memory<P> dimms(mem);
-  const hls::host::BitTrueBanks<P> banks(mem);
+  const Vizard2Memory<ProfileTraits<P>> dimms(mem);
+  const hls::host::BitTrueBanks<ProfileTraits<P>> banks(mem);
   auto voxel = [&](int x, int y, int z) {  // the hls design's view of the volume
     const int hx = (dims[0] + 1) / 2, hy = (dims[1] + 1) / 2;
     const int b = (x & 1) | (y & 1) << 1 | (z & 1) << 2;
-    return banks.read(b, typename hls::InterpolationParams<P>::word_addr_t(
+    return banks.read(b, typename hls::InterpolationParams<ProfileTraits<P>>::word_addr_t(
                              (x >> 1) + (y >> 1) * hx + (z >> 1) * hx * hy));
   };
   const int last[3] = {std::max(dims[0] - 2, 0), std::max(dims[1] - 2, 0), std::max(dims[2] - 2, 0)};
@@ -74,13 +74,13 @@ void check_neighbourhoods(std::array<int, 3> dims) {
           ASSERT_EQ(c, Vizard2Layout::word_of(x, cy, cz)) << "corner " << j;
           const auto v = Vizard2Layout::voxel_of(d, c, j & 1);
           ASSERT_EQ(v, (std::array<int, 3>{cx, cy, cz}));
-          const DimmWord<P> w = dimms.word(d, c);
+          const DimmWord<ProfileTraits<P>> w = dimms.word(d, c);
           const auto& half = (j & 1) ? w.hi : w.lo;
           if (cx < dims[0] && cy < dims[1] && cz < dims[2]) {
             ASSERT_EQ(fields<P>(half), fields<P>(voxel(cx, cy, cz)))
                 << "corner " << j << " at (" << x << ", " << y << ", " << z << ")";
           } else {  // beyond a 1-voxel axis: the zero padding the hls banks hold
-            ASSERT_EQ(fields<P>(half), fields<P>(hls::VoxelWordFx<P>{})) << "corner " << j;
+            ASSERT_EQ(fields<P>(half), fields<P>(hls::VoxelWordFx<ProfileTraits<P>>{})) << "corner " << j;
           }
         }
         // Four distinct DIMMs, one word each: the whole neighbourhood in one access.
@@ -106,10 +106,10 @@ TEST(Vizard2Layout, EveryNeighbourhoodIsOneWordPerDimm) {
 
 // The 64-bit bus word of the vizard2 profile: two 32-bit packed voxel words.
 TEST(Vizard2Layout, BusWordIsTwoPackedVoxels) {
-  static_assert(hls::InterpolationParams<kVizard2>::word_bits == 32);
+  static_assert(hls::InterpolationParams<ProfileTraits<kVizard2>>::word_bits == 32);
   const std::array<int, 3> dims{7, 6, 5};
   const bittrue::VoxelMemory mem = numbered_memory(dims);
-  const Vizard2Memory<kVizard2> dimms(mem);
+  const Vizard2Memory<ProfileTraits<kVizard2>> dimms(mem);
   const Vizard2Layout layout(dims);
   const WordGrid& g = layout.grid();
   for (int d = 0; d < 4; ++d)
@@ -119,9 +119,9 @@ TEST(Vizard2Layout, BusWordIsTwoPackedVoxels) {
           const WordCoord c{x, y2, z2};
           const std::uint64_t bus = dimms.bus_word(d, c);
           const auto v = Vizard2Layout::voxel_of(d, c, 0);
-          const auto lo = hls::pack_voxel_word<kVizard2>(dimms.voxel(v[0], v[1], v[2])).to_uint64();
+          const auto lo = hls::pack_voxel_word<ProfileTraits<kVizard2>>(dimms.voxel(v[0], v[1], v[2])).to_uint64();
           const auto hi =
-              hls::pack_voxel_word<kVizard2>(dimms.voxel(v[0] + 1, v[1], v[2])).to_uint64();
+              hls::pack_voxel_word<ProfileTraits<kVizard2>>(dimms.voxel(v[0] + 1, v[1], v[2])).to_uint64();
           ASSERT_EQ(bus & 0xffffffffu, lo);
           ASSERT_EQ(bus >> 32, hi);
           if (v[0] + 1 == dims[0]) {
@@ -137,12 +137,12 @@ TEST(Vizard2Layout, BusWordIsTwoPackedVoxels) {
 // gathers the same corners as the hls design's own 8-bank view.
 template <PrecisionProfile P>
 void check_gather(std::array<int, 3> dims) {
-  using G = hls::GeometryParams<P>;
+  using G = hls::GeometryParams<ProfileTraits<P>>;
   const bittrue::VoxelMemory mem = numbered_memory(dims);
-  const Vizard2Memory<P> dimms(mem);
+  const Vizard2Memory<ProfileTraits<P>> dimms(mem);
   const Vizard2Layout layout(dims);
-  const hls::host::BitTrueBanks<P> banks(mem);
-  hls::GeometryRegisters<P> r;
+  const hls::host::BitTrueBanks<ProfileTraits<P>> banks(mem);
+  hls::GeometryRegisters<ProfileTraits<P>> r;
   for (int k = 0; k < 3; ++k) {
     r.LO[k] = 0;
     r.HI[k] = dims[static_cast<std::size_t>(k)] - 1;
@@ -156,15 +156,15 @@ void check_gather(std::array<int, 3> dims) {
   for (int i = 0; i < 3000; ++i) {
     typename G::pos_t p[3];
     for (int k = 0; k < 3; ++k) p[k] = u(rng) * dims[static_cast<std::size_t>(k)];
-    const hls::BankAccess<P> acc = hls::address_generator<P>(r, p);
-    const auto words = Vizard2Layout::neighbourhood(layout.corner<P>(acc));
-    std::array<DimmWord<P>, 4> w;
+    const hls::BankAccess<ProfileTraits<P>> acc = hls::address_generator<ProfileTraits<P>>(r, p);
+    const auto words = Vizard2Layout::neighbourhood(layout.corner<ProfileTraits<P>>(acc));
+    std::array<DimmWord<ProfileTraits<P>>, 4> w;
     for (int d = 0; d < 4; ++d)
       w[static_cast<std::size_t>(d)] = dimms.word(d, words[static_cast<std::size_t>(d)]);
-    const rtl::layout::Dimm4Banks<P> view{w.data(), acc.parity};
-    hls::VoxelWordFx<P> a[8], b[8];
-    hls::gather<P>(view, acc, a);
-    hls::gather<P>(banks, acc, b);
+    const rtl::layout::Dimm4Banks<ProfileTraits<P>> view{w.data(), acc.parity};
+    hls::VoxelWordFx<ProfileTraits<P>> a[8], b[8];
+    hls::gather<ProfileTraits<P>>(view, acc, a);
+    hls::gather<ProfileTraits<P>>(banks, acc, b);
     for (int j = 0; j < 8; ++j) ASSERT_EQ(fields<P>(a[j]), fields<P>(b[j])) << "corner " << j;
   }
 }
