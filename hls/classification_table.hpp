@@ -89,9 +89,9 @@ typename ClassificationParams<P>::addr_t class_address(
   using Params = ClassificationParams<P>;
   // Re-reading the bits with the binary point moved is wiring, not arithmetic.
   typename Params::scaled_value_t scaled;
-  scaled.range() = value.range().to_uint64();
+  write_bits(scaled, read_bits(value));
   const typename Params::addr_round_t rounded = scaled;  // one rounding, one clamp
-  return typename Params::addr_t(rounded);               // integer-valued: exact
+  return int_cast<typename Params::addr_t>(rounded);              // integer-valued: exact
 }
 
 // §4: one table read per sample.
@@ -122,13 +122,13 @@ Vizard2Words pack_vizard2_words(const ClassEntry<P>& e) {
   Vizard2Words w;
   w.word[0] = 0;
   w.word[1] = 0;
-  w.word[0].range(31, 24) = e.r.range().to_uint64();
-  w.word[0].range(23, 16) = e.g.range().to_uint64();
-  w.word[0].range(15, 8) = e.b.range().to_uint64();
-  w.word[0].range(7, 0) = e.alpha.range().to_uint64();
-  w.word[1].range(31, 24) = e.ka.range().to_uint64();
-  w.word[1].range(23, 16) = e.kd.range().to_uint64();
-  w.word[1].range(15, 8) = e.ks.range().to_uint64();
+  write_bits(w.word[0], 31, 24, read_bits(e.r));
+  write_bits(w.word[0], 23, 16, read_bits(e.g));
+  write_bits(w.word[0], 15, 8, read_bits(e.b));
+  write_bits(w.word[0], 7, 0, read_bits(e.alpha));
+  write_bits(w.word[1], 31, 24, read_bits(e.ka));
+  write_bits(w.word[1], 23, 16, read_bits(e.kd));
+  write_bits(w.word[1], 15, 8, read_bits(e.ks));
   return w;
 }
 
@@ -137,13 +137,13 @@ template <class P, typename std::enable_if<Vizard2Layout<P>::value, int>::type =
 ClassEntry<P> unpack_vizard2_words(const Vizard2Words& w) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   ClassEntry<P> e;
-  e.r.range() = w.word[0].range(31, 24).to_uint64();
-  e.g.range() = w.word[0].range(23, 16).to_uint64();
-  e.b.range() = w.word[0].range(15, 8).to_uint64();
-  e.alpha.range() = w.word[0].range(7, 0).to_uint64();
-  e.ka.range() = w.word[1].range(31, 24).to_uint64();
-  e.kd.range() = w.word[1].range(23, 16).to_uint64();
-  e.ks.range() = w.word[1].range(15, 8).to_uint64();
+  write_bits(e.r, read_bits(w.word[0], 31, 24));
+  write_bits(e.g, read_bits(w.word[0], 23, 16));
+  write_bits(e.b, read_bits(w.word[0], 15, 8));
+  write_bits(e.alpha, read_bits(w.word[0], 7, 0));
+  write_bits(e.ka, read_bits(w.word[1], 31, 24));
+  write_bits(e.kd, read_bits(w.word[1], 23, 16));
+  write_bits(e.ks, read_bits(w.word[1], 15, 8));
   return e;
 }
 
@@ -155,26 +155,26 @@ namespace host {
 template <class P>
 ClassEntry<P> entry_from_raw(const bittrue::ClassEntry& raw) {
   ClassEntry<P> e;
-  e.r.range() = std::uint64_t{raw.r};
-  e.g.range() = std::uint64_t{raw.g};
-  e.b.range() = std::uint64_t{raw.b};
-  e.alpha.range() = std::uint64_t{raw.alpha};
-  e.ka.range() = std::uint64_t{raw.ka};
-  e.kd.range() = std::uint64_t{raw.kd};
-  e.ks.range() = std::uint64_t{raw.ks};
+  write_bits(e.r, std::uint64_t{raw.r});
+  write_bits(e.g, std::uint64_t{raw.g});
+  write_bits(e.b, std::uint64_t{raw.b});
+  write_bits(e.alpha, std::uint64_t{raw.alpha});
+  write_bits(e.ka, std::uint64_t{raw.ka});
+  write_bits(e.kd, std::uint64_t{raw.kd});
+  write_bits(e.ks, std::uint64_t{raw.ks});
   return e;
 }
 
 template <class P>
 bittrue::ClassEntry entry_to_raw(const ClassEntry<P>& e) {
   bittrue::ClassEntry raw;
-  raw.r = e.r.range().to_uint();
-  raw.g = e.g.range().to_uint();
-  raw.b = e.b.range().to_uint();
-  raw.alpha = e.alpha.range().to_uint();
-  raw.ka = e.ka.range().to_uint();
-  raw.kd = e.kd.range().to_uint();
-  raw.ks = e.ks.range().to_uint();
+  raw.r = static_cast<unsigned>(read_bits(e.r));
+  raw.g = static_cast<unsigned>(read_bits(e.g));
+  raw.b = static_cast<unsigned>(read_bits(e.b));
+  raw.alpha = static_cast<unsigned>(read_bits(e.alpha));
+  raw.ka = static_cast<unsigned>(read_bits(e.ka));
+  raw.kd = static_cast<unsigned>(read_bits(e.kd));
+  raw.ks = static_cast<unsigned>(read_bits(e.ks));
   return raw;
 }
 

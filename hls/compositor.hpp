@@ -142,7 +142,7 @@ typename CompositorParams<P>::out_t quantize_output(const typename CompositorPar
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = CompositorParams<P>;
   const typename Params::out_round_t q = x * uint_t<Params::out_bits>(Params::out_max);
-  return typename Params::out_t(q);
+  return int_cast<typename Params::out_t>(q);
 }
 
 // §8: the pixel (r, g, b, alpha) of a finished ray. A miss is (0, 0, 0, 0), the
@@ -180,8 +180,8 @@ template <class P>
 CompositorRegisters<P> compositor_registers(const bittrue::FrameRegisters& regs) {
   CompositorRegisters<P> r;
   r.ert_enabled = regs.ert_enabled;
-  r.ert_threshold.range() = static_cast<std::uint64_t>(regs.ert_threshold);
-  r.RM.range() = static_cast<std::uint64_t>(regs.RM);
+  write_bits(r.ert_threshold, static_cast<std::uint64_t>(regs.ert_threshold));
+  write_bits(r.RM, static_cast<std::uint64_t>(regs.RM));
   return r;
 }
 

@@ -163,7 +163,7 @@ typename GeometryParams<P>::y_t rsqrt_newton(
   using G = GeometryParams<P>;
   // floor(m·2^sb): bits [df, df - sb] of m (its integer bit and the top sb
   // fraction bits); 2^sb only when m rounded up to 1.
-  unsigned idx = static_cast<unsigned>(m.range(G::df, G::df - G::sb).to_uint64());
+  unsigned idx = static_cast<unsigned>(read_bits(m, G::df, G::df - G::sb));
   if (idx > static_cast<unsigned>(G::seed_entries - 1)) idx = G::seed_entries - 1;
   typename G::y_t y = seed[idx];
   const typename G::three_t three = 3;
@@ -283,7 +283,7 @@ RaySetup<P> clip_ray(const GeometryRegisters<P>& r, const typename GeometryParam
   if (ray.hit) {
     ray.k_in = k_in;
     ray.k_out = k_out;
-    ray.n = k_out - k_in;  // floor (non-negative: truncation toward zero)
+    ray.n = int_cast<typename G::count_t>(k_out - k_in);  // floor (non-negative: toward zero)
     ray.n++;
   } else {
     ray.k_in = 0;
@@ -308,7 +308,7 @@ template <class P>
 typename GeometryParams<P>::k_t pixel_jitter(const GeometryRegisters<P>& r, int px, int py) {
   using G = GeometryParams<P>;
   typename G::k_t j = 0;
-  if (r.jitter) j.range(G::tf - 1, 0) = ref::jitter_raw(px, py, G::tf);
+  if (r.jitter) write_bits(j, G::tf - 1, 0, ref::jitter_raw(px, py, G::tf));
   return j;
 }
 
@@ -374,7 +374,7 @@ namespace host {
 template <class T>
 T from_raw_bits(std::int64_t raw) {
   T x;
-  x.range(T::width - 1, 0) = static_cast<std::uint64_t>(raw);
+  write_bits(x, T::width - 1, 0, static_cast<std::uint64_t>(raw));
   return x;
 }
 

@@ -87,11 +87,11 @@ template <class P>
 VoxelWordFx<P> unpack_voxel_word(const typename InterpolationParams<P>::packed_word_t& w) {
   using I = InterpolationParams<P>;
   VoxelWordFx<P> v;
-  v.value.range(I::vb - 1, 0) = w.range(I::vb - 1, 0).to_uint64();
+  write_bits(v.value, I::vb - 1, 0, read_bits(w, I::vb - 1, 0));
   [[gnu::unused]] unpack_loop : for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename I::packed_word_t field = w >> (I::vb + c * I::gb);
-    v.g[c].range(I::gb - 1, 0) = field.range(I::gb - 1, 0).to_uint64();
+    write_bits(v.g[c], I::gb - 1, 0, read_bits(field, I::gb - 1, 0));
   }
   return v;
 }
@@ -100,11 +100,11 @@ template <class P>
 typename InterpolationParams<P>::packed_word_t pack_voxel_word(const VoxelWordFx<P>& v) {
   using I = InterpolationParams<P>;
   typename I::packed_word_t w = 0;
-  w.range(I::vb - 1, 0) = v.value.range(I::vb - 1, 0).to_uint64();
+  write_bits(w, I::vb - 1, 0, read_bits(v.value, I::vb - 1, 0));
   [[gnu::unused]] pack_loop : for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename I::packed_word_t field = 0;
-    field.range(I::gb - 1, 0) = v.g[c].range(I::gb - 1, 0).to_uint64();
+    write_bits(field, I::gb - 1, 0, read_bits(v.g[c], I::gb - 1, 0));
     w |= field << (I::vb + c * I::gb);
   }
   return w;
@@ -144,7 +144,7 @@ typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
   if (c > r.HI[k]) c = r.HI[k];
   cp = c;  // exact: 0 <= c < 2^a
   // floor(p) <= HI <= dim - 1.
-  typename G::coord_t i0 = cp;  // floor (truncation of a non-negative value)
+  typename G::coord_t i0 = int_cast<typename G::coord_t>(cp);  // floor (truncation of a non-negative value)
   if (i0 == r.LAST[k] && i0 != 0u) i0 = i0 - 1u;
   return i0;
 }

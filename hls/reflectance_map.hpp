@@ -174,7 +174,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename Params::world_gradient_t gw = g[k] * regs.IS[k];
     n[k] = -gw;
-    mag[k] = n[k].is_neg() ? magnitude_t(gw) : magnitude_t(n[k]);
+    mag[k] = (n[k] < 0) ? magnitude_t(gw) : magnitude_t(n[k]);
   }
 
   // §5.3: major axis, ties to the lower axis; the other two axes a < b.
@@ -192,7 +192,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   // same division with wb more quotient bits, t = floor(·· 2^wb); the cell is
   // min(t >> wb, res - 1) and the in-cell position f = t - (cell << wb) in units
   // of 2^-wb (f = 2^wb, i.e. 1, only at the clamp).
-  typename Params::den_t den = mag[m].range().to_uint64();
+  typename Params::den_t den = read_bits(mag[m]);
   den = den << 1;
   if (!valid) den = 1;  // no division by zero; the index is unused then
   const typename Params::cell_t last = Params::res - 1;
@@ -204,20 +204,20 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   [[gnu::unused]] rm_cell_divide : for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename Params::offset_t off = n[uv_axis[j]] + mag[m];
-    const typename Params::den_t off_raw = off.range().to_uint64();
+    const typename Params::den_t off_raw = read_bits(off);
     typename Params::num_t num = off_raw * uint_t<Params::res_bits>(Params::res);
     num = num << Params::wb;
     const typename Params::pos_t t = num / den;  // <= res·2^wb
     const typename Params::pos_t whole = t >> Params::wb;
     cell[j] = whole > last ? last : typename Params::cell_t(whole);
     const typename Params::pos_t f = t - (typename Params::pos_t(cell[j]) << Params::wb);
-    frac[j].range() = f.to_uint64();  // f <= 2^wb: fits wb + 1 bits
+    write_bits(frac[j], f.to_uint64());  // f <= 2^wb: fits wb + 1 bits
   }
 
   // Face 2m + (N[m] < 0); index face·side² + iv·side + iu (side = res, or res + 1 for the
   // corner grid).
   constexpr int side = Params::side;
-  const typename Params::index_t face = 2 * m + (n[m].is_neg() ? 1 : 0);
+  const typename Params::index_t face = 2 * m + ((n[m] < 0) ? 1 : 0);
   RmCell<P> out;
   out.valid = valid;
   out.index = face * typename Params::index_t(side * side) +
@@ -288,7 +288,7 @@ Reflect<P> reflect(const ReflectanceMap<P>& map, const ReflectanceRegisters<P>& 
                    const G (&g)[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ReflectanceParams<P>;
-  static_assert(G::width - G::iwidth == Params::sf,
+  static_assert(G::width - fixed_iwidth<G>::value == Params::sf,
                 "the gradient must have sample_frac_bits fraction bits");
   const typename Params::gradient_t gc[3] = {g[0], g[1], g[2]};
   const RmCell<P> cell = rm_cell<P>(gc, regs);
@@ -314,8 +314,8 @@ bool load_reflectance_map(ReflectanceMap<P>& map, const std::vector<std::uint32_
       specular.size() != static_cast<std::size_t>(n))
     return false;
   [[gnu::unused]] load_rm_entries : for (int i = 0; i < n; ++i) {
-    map.diffuse[i].range() = std::uint64_t{diffuse[static_cast<std::size_t>(i)]};
-    map.specular[i].range() = std::uint64_t{specular[static_cast<std::size_t>(i)]};
+    write_bits(map.diffuse[i], std::uint64_t{diffuse[static_cast<std::size_t>(i)]});
+    write_bits(map.specular[i], std::uint64_t{specular[static_cast<std::size_t>(i)]});
   }
   return true;
 }
@@ -325,7 +325,7 @@ template <class P>
 ReflectanceRegisters<P> reflectance_registers(const bittrue::FrameRegisters& regs) {
   ReflectanceRegisters<P> r;
   [[gnu::unused]] load_is_registers : for (int k = 0; k < 3; ++k) {
-    r.IS[k].range() = static_cast<std::uint64_t>(regs.IS[static_cast<std::size_t>(k)]);
+    write_bits(r.IS[k], static_cast<std::uint64_t>(regs.IS[static_cast<std::size_t>(k)]));
   }
   return r;
 }

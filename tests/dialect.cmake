@@ -14,8 +14,6 @@
 # (host code out, hls/pragma.hpp), as a C simulation does.
 set(voxcast_dialect_flags -std=c++14 -fsyntax-only -Wall -Wextra -Werror -pedantic
     -fno-exceptions -fno-rtti -Wno-unknown-pragmas -I${PROJECT_SOURCE_DIR})
-set(VOXCAST_VENDOR_DIR "${PROJECT_SOURCE_DIR}/../shared/vendor" CACHE PATH
-    "the vendors' fixed-point headers (xilinx-ap-types/include, ac-types/include)")
 
 find_program(VOXCAST_GXX NAMES g++ g++-12)
 find_program(VOXCAST_CLANGXX NAMES clang++ clang++-14)
@@ -24,6 +22,9 @@ set(voxcast_dialect_types_clone -D__SYNTHESIS__)
 set(voxcast_dialect_types_xilinx -DVOXCAST_HLS_KERNELS_ONLY -DVOXCAST_VENDOR_TYPES
     -isystem ${VOXCAST_VENDOR_DIR}/xilinx-ap-types/include)
 set(voxcast_dialect_header_xilinx ${VOXCAST_VENDOR_DIR}/xilinx-ap-types/include/ap_fixed.h)
+set(voxcast_dialect_types_catapult -DVOXCAST_HLS_KERNELS_ONLY -DVOXCAST_AC_TYPES
+    -isystem ${VOXCAST_VENDOR_DIR}/ac-types/include)
+set(voxcast_dialect_header_catapult ${VOXCAST_VENDOR_DIR}/ac-types/include/ac_fixed.h)
 
 set(voxcast_dialect_top_vizard2 hls/vizard2_synth_top.cpp -DVOXCAST_SYNTH_PROFILE=Vizard2Traits)
 set(voxcast_dialect_top_balanced hls/vizard2_synth_top.cpp -DVOXCAST_SYNTH_PROFILE=BalancedTraits)
@@ -40,7 +41,7 @@ foreach(compiler gxx clangxx)
     message(STATUS "dialect tests: no ${compiler} found; its C++14 checks are not registered")
     continue()
   endif()
-  foreach(types clone xilinx)
+  foreach(types clone xilinx catapult)
     foreach(top vizard2 balanced precise virim)
       set(name dialect.cxx14.${compiler}.${types}.${top})
       list(GET voxcast_dialect_top_${top} 0 source)

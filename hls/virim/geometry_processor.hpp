@@ -59,7 +59,7 @@ Address<HP> geometry_processor(const GeometryRegisters<HP>& g, int i, int j, int
     const typename V::floor_t fl = pr;
     const ufixed<V::wb, 0> f = pr - fl;
     a.x0[r] = fl.to_int();
-    a.q[r] = f.range(V::wb - 1, 0).to_uint64();
+    a.q[r] = read_bits(f, V::wb - 1, 0);
   }
   return a;
 }

@@ -24,9 +24,9 @@ template <class HP>
 typename VirimParams<HP>::bus_t pack_bus_word(const BusWord<HP>& w) {
   using V = VirimParams<HP>;
   typename V::bus_t b = 0;
-  b.range(V::db - 1, 0) = w.density.range(V::db - 1, 0).to_uint64();
-  b.range(V::db + V::gb - 1, V::db) = w.gx.range(V::gb - 1, 0).to_uint64();
-  b.range(V::db + 2 * V::gb - 1, V::db + V::gb) = w.gy.range(V::gb - 1, 0).to_uint64();
+  write_bits(b, V::db - 1, 0, read_bits(w.density, V::db - 1, 0));
+  write_bits(b, V::db + V::gb - 1, V::db, read_bits(w.gx, V::gb - 1, 0));
+  write_bits(b, V::db + 2 * V::gb - 1, V::db + V::gb, read_bits(w.gy, V::gb - 1, 0));
   return b;
 }
 
@@ -34,9 +34,9 @@ template <class HP>
 BusWord<HP> unpack_bus_word(const typename VirimParams<HP>::bus_t& b) {
   using V = VirimParams<HP>;
   BusWord<HP> w;
-  w.density.range(V::db - 1, 0) = b.range(V::db - 1, 0).to_uint64();
-  w.gx.range(V::gb - 1, 0) = b.range(V::db + V::gb - 1, V::db).to_uint64();
-  w.gy.range(V::gb - 1, 0) = b.range(V::db + 2 * V::gb - 1, V::db + V::gb).to_uint64();
+  write_bits(w.density, V::db - 1, 0, read_bits(b, V::db - 1, 0));
+  write_bits(w.gx, V::gb - 1, 0, read_bits(b, V::db + V::gb - 1, V::db));
+  write_bits(w.gy, V::gb - 1, 0, read_bits(b, V::db + 2 * V::gb - 1, V::db + V::gb));
   return w;
 }
 

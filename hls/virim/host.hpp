@@ -64,7 +64,7 @@ std::unique_ptr<VirimFrame<HP>> load_virim_frame(const bittrue::VirimSetup& s) {
   for (std::size_t v = 0; v < s.lut.size(); ++v) f->tables.lut[v] = on_grid<typename V::density_t>(s.lut[v]);
   for (std::size_t e = 0; e < static_cast<std::size_t>(V::rom_entries); ++e)
     for (std::size_t c = 0; c < 8; ++c)
-      f->tables.rom[e][c].range(V::wf, 0) = s.rom[e * 8 + c];
+      write_bits(f->tables.rom[e][c], V::wf, 0, s.rom[e * 8 + c]);
   SliceRegisters<HP>& sr = f->slice;
   sr.light = on_grid<typename V::light_t>(s.light);
   sr.wd0 = on_grid<typename V::uweight_t>(s.wd0);

@@ -49,7 +49,7 @@ Phong<HP> phong(const SliceRegisters<HP>& r, const typename VirimParams<HP>::gra
   using ucos_t = typename V::ucos_t;
   const typename V::mag2_t m2 = gx * gx + gy * gy;  // exact
   typename V::mag_t m;
-  m.range(V::gb - 1, 0) = isqrt<V::gb>(m2.range(2 * V::gb - 1, 0).to_uint64());
+  write_bits(m, V::gb - 1, 0, isqrt<V::gb>(read_bits(m2, 2 * V::gb - 1, 0)));
   ucos_t surface = m * 2;  // TRN to cof bits
   if (surface > 1) surface = 1;
   // The Phong terms fade in below |g| = 2^-fade_log2 (ref::heidelberg::kNormalFade).

@@ -36,9 +36,9 @@ typename VirimParams<HP>::density_t rotator_voxel(const VirimFrame<HP>& f, Parit
   bool valid[8];
   mem.read8(a.x0, value, valid);
   uint_t<3 * HP::weight_bits> addr = 0;
-  addr.range(HP::weight_bits - 1, 0) = a.q[0].to_uint64();
-  addr.range(2 * HP::weight_bits - 1, HP::weight_bits) = a.q[1].to_uint64();
-  addr.range(3 * HP::weight_bits - 1, 2 * HP::weight_bits) = a.q[2].to_uint64();
+  write_bits(addr, HP::weight_bits - 1, 0, a.q[0].to_uint64());
+  write_bits(addr, 2 * HP::weight_bits - 1, HP::weight_bits, a.q[1].to_uint64());
+  write_bits(addr, 3 * HP::weight_bits - 1, 2 * HP::weight_bits, a.q[2].to_uint64());
   return interpolation_processor<HP>(f.tables, addr, value, valid);
 }
 

@@ -190,9 +190,9 @@ class Module {
     last_issue_ = issue;
     rc_ = issue + 1;
     hls::uint_t<3 * HP::weight_bits> addr = 0;
-    addr.range(HP::weight_bits - 1, 0) = a.q[0].to_uint64();
-    addr.range(2 * HP::weight_bits - 1, HP::weight_bits) = a.q[1].to_uint64();
-    addr.range(3 * HP::weight_bits - 1, 2 * HP::weight_bits) = a.q[2].to_uint64();
+    hls::write_bits(addr, HP::weight_bits - 1, 0, a.q[0].to_uint64());
+    hls::write_bits(addr, 2 * HP::weight_bits - 1, HP::weight_bits, a.q[1].to_uint64());
+    hls::write_bits(addr, 3 * HP::weight_bits - 1, 2 * HP::weight_bits, a.q[2].to_uint64());
     return hls::virim::interpolation_processor<HP>(f_.tables, addr, value, valid);
   }
 
