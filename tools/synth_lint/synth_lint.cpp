@@ -169,7 +169,8 @@ std::string qualified_name(CXCursor c) {
     if (p.kind == CXCursor_LinkageSpec || p.kind == CXCursor_UnexposedDecl) continue;
     std::string name = spelling(p);
     if (p.kind == CXCursor_Namespace && (name.empty() || name.rfind("__", 0) == 0)) continue;
-    if (name.empty()) name = "(anonymous)";
+    // A lambda's closure type is an unnamed class (an unnamed struct is a StructDecl).
+    if (name.empty()) name = p.kind == CXCursor_ClassDecl ? "(lambda)" : "(anonymous)";
     parts.push_back(name);
   }
   std::string out;
