@@ -11,6 +11,7 @@ VOXCAST_PACKAGES=(
   mricron-data gnuplot-nox
   tcl
   clang libclang-rt-14-dev
+  libclang-14-dev
 )
 
 missing=()
