@@ -6,6 +6,10 @@
 #include <sstream>
 
 #include "cosim/engines.hpp"
+#include "hls/frame_image.hpp"
+#include "hls/host_frame.hpp"
+#include "refmodel/render/raycaster.hpp"
+#include "refmodel/scene/scene.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/precision/preset_profiles.hpp"
 #include "refmodel/precision/presets.hpp"
@@ -155,7 +159,7 @@ std::vector<SynthScript> vitis_scripts(const ref::Scene& scene, const std::strin
   std::vector<SynthScript> out;
   for (const SynthTop& top : synth_tops(scene)) {
     const std::string cflags = tcl_word(synth_cflags(top, root_str, config));
-    std::vector<std::string> files{top.source};
+    std::vector<std::string> files{top.source, kCsimTestbench};
     files.insert(files.end(), top.headers.begin(), top.headers.end());
     for (const std::string& f : files)
       if (!fs::is_regular_file(root / f))
@@ -190,10 +194,20 @@ std::vector<SynthScript> vitis_scripts(const ref::Scene& scene, const std::strin
     if (!config.empty())
       os << "# The scene's units (" << kElaboratedConfigFile << ", written with this script)\n"
          << "add_files " << tcl_word(config) << " -cflags " << cflags << "\n";
-    os << "open_solution -reset -flow_target vivado " << board.name << "\n"
+    os << "# C simulation testbench: the frame, the voxel banks and the expected image\n"
+       << "# voxcast rendered (" << kCsimDataFile << ", written with this script); every\n"
+       << "# pixel must match (hls/tb/vizard2_frame_tb.cpp, docs/synthesis.md).\n"
+       << "add_files -tb [file join $voxcast_root " << kCsimTestbench << "] -cflags " << cflags
+       << "\n"
+       << "set csim_data $script_dir\n"
+       << "# RTL co-simulation of a whole frame takes hours: set to 1 to run it.\n"
+       << "set run_cosim 0\n"
+       << "open_solution -reset -flow_target vivado " << board.name << "\n"
        << "set_part " << tcl_word(board.fpga.tool_part) << "\n"
        << "create_clock -period " << ns3(core.period_ns()) << " -name " << core.name << "\n"
+       << "csim_design -argv $csim_data\n"
        << "csynth_design\n"
+       << "if {$run_cosim} { cosim_design -argv $csim_data }\n"
        << "export_design -format ip_catalog\n"
        << "exit\n";
     out.push_back({top.function + "_vitis.tcl", os.str()});
@@ -203,6 +217,67 @@ std::vector<SynthScript> vitis_scripts(const ref::Scene& scene, const std::strin
 
 std::string default_source_root() { return VOXCAST_SOURCE_ROOT; }
 
+namespace {
+
+// hls/frame_image.hpp's visitor on the writing side: every field's pattern.
+struct WordSink {
+  std::vector<std::uint64_t>& out;
+  template <class T>
+  void bits(const T& x) {
+    for (int k = 0; k < hls::image::chunks(T::width); ++k) out.push_back(hls::image::chunk_of(x, k));
+  }
+  void flag(bool b) { out.push_back(b ? 1 : 0); }
+  void mode(hls::FrameMode m) { out.push_back(static_cast<std::uint64_t>(m)); }
+};
+
+// The frame state for the units `u` and the 8 packed banks, in the order
+// hls/tb/vizard2_frame_tb.cpp reads them.
+template <class P>
+void append_frame_and_banks(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
+                            const hls::Units& u, std::vector<std::uint64_t>& out) {
+  const auto frame = hls::host::load_frame_state<P>(setup, "synth-script");
+  WordSink sink{out};
+  hls::image::visit_frame(*frame, u, sink);
+  const hls::host::BitTrueBanks<P> view(memory);
+  using Addr = typename hls::InterpolationParams<P>::word_addr_t;
+  for (int b = 0; b < 8; ++b) {
+    const std::size_t n = memory.banks[static_cast<std::size_t>(b)].size();
+    out.push_back(n);
+    for (std::size_t w = 0; w < n; ++w) sink.bits(hls::pack_voxel_word<P>(view.read(b, Addr(w))));
+  }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> csim_data(const ref::Scene& scene, const SceneVolume& sv,
+                                    const hls::Units& units) {
+  const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
+  const ref::RenderInputs in = ref::make_render_inputs(scene, sv.volume, sv.gradients, pose);
+  const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
+  const bittrue::VoxelMemory memory =
+      bittrue::make_voxel_memory(scene.precision, sv.volume, sv.gradients);
+  ref::FrameStats stats;
+  const ref::QuantImage expected = hls_render_image(setup, memory, 0, &stats);
+
+  std::vector<std::uint64_t> words{kCsimDataTag, 0, static_cast<std::uint64_t>(setup.regs.width),
+                                   static_cast<std::uint64_t>(setup.regs.height)};
+  const bool compiled = hls::host::dispatch_profile(scene.precision, [&]<class P>() {
+    words[1] = static_cast<std::uint64_t>(
+        hls::image::chunks(hls::InterpolationParams<P>::packed_word_t::width));
+    append_frame_and_banks<P>(setup, memory, units, words);
+  });
+  if (!compiled) throw Error("synth-script: the csim data needs a compiled preset profile");
+  words.push_back(stats.samples);
+  for (const auto& px : expected.pixels)
+    for (std::uint32_t c : px) words.push_back(c);
+
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(words.size() * 8);
+  for (std::uint64_t w : words)
+    for (int b = 0; b < 8; ++b) bytes.push_back(static_cast<std::uint8_t>(w >> (8 * b)));
+  return bytes;
+}
+
 std::vector<std::string> write_synth_scripts(const ref::Scene& scene, const std::string& scene_name,
                                              const rtl::board::Board& board,
                                              const std::string& tool, const std::string& out_dir,
@@ -211,14 +286,16 @@ std::vector<std::string> write_synth_scripts(const ref::Scene& scene, const std:
   (void)synth_tops(scene);  // a profile that is not compiled: refused before the volume loads
   const auto scripts = vitis_scripts(scene, scene_name, board, source_root, out_dir);
   const SceneVolume sv = load_scene_volume(scene);
-  const std::string header =
-      elaborated_config_header(scene, ref::elaborate(scene, sv.volume, sv.gradients), scene_name);
+  const ref::Elaboration e = ref::elaborate(scene, sv.volume, sv.gradients);
+  const std::string header = elaborated_config_header(scene, e, scene_name);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw Error("synth-script: cannot create " + out_dir + ": " + ec.message());
   std::vector<std::string> paths;
   std::vector<SynthScript> files{{kElaboratedConfigFile, header}};
   files.insert(files.end(), scripts.begin(), scripts.end());
+  const std::vector<std::uint8_t> data = csim_data(scene, sv, elaborated_units(e));
+  files.push_back({kCsimDataFile, std::string(data.begin(), data.end())});
   for (const SynthScript& s : files) {
     const std::string path = (fs::path(out_dir) / s.file_name).string();
     std::ofstream f(path, std::ios::binary);

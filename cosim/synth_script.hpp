@@ -6,9 +6,11 @@
 // and source files (docs/synthesis.md).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "cosim/engines.hpp"
 #include "hls/units.hpp"
 #include "refmodel/scene/elaboration.hpp"
 #include "refmodel/scene/scene.hpp"
@@ -43,8 +45,8 @@ std::string synth_cflags(const SynthTop& top, const std::string& source_root,
 // The units of the top for an elaboration (ref::Elaboration's flags, one to one).
 hls::Units elaborated_units(const ref::Elaboration& e);
 
-// elaborated_config.hpp for the scene: the profile (kProfile, one of the
-// compiled presets), the units (kUnits) and the sizes ref::elaborate derived
+// elaborated_config.hpp for the scene: the profile (Profile, one of the
+// compiled presets' traits types), the units (Units, an hls::UnitSet) and the sizes ref::elaborate derived
 // from the data and the transfer function, with the omissions and their
 // reasons as comments. Defines VOXCAST_ELABORATED_CONFIG.
 inline constexpr const char* kElaboratedConfigFile = "elaborated_config.hpp";
@@ -54,18 +56,30 @@ std::string elaborated_config_header(const ref::Scene& scene, const ref::Elabora
 // Vitis HLS Tcl for each top. Throws voxcast::Error when a named file does not
 // exist under source_root. `scene_name` goes into the comments only.
 // config_dir: the folder of elaborated_config.hpp (added to the files and
-// passed with -include); empty: the full design (kAllUnits).
+// passed with -include); empty: the full design (AllUnits).
 std::vector<SynthScript> vitis_scripts(const ref::Scene& scene, const std::string& scene_name,
                                        const rtl::board::Board& board,
                                        const std::string& source_root,
                                        const std::string& config_dir = "");
 
+// The C simulation testbench (hls/tb/vizard2_frame_tb.cpp) and its data: the
+// frame state for `units` (hls/frame_image.hpp), the 8 packed voxel banks, the
+// sample count and the image the hls engine renders for the scene, as
+// little-endian 64-bit words after the tag kCsimDataTag ("VXFRAME1") and the
+// chunks per voxel word, width, height.
+inline constexpr const char* kCsimTestbench = "hls/tb/vizard2_frame_tb.cpp";
+inline constexpr const char* kCsimDataFile = "csim_frame.bin";
+inline constexpr std::uint64_t kCsimDataTag = 0x31454d4152465856ull;
+std::vector<std::uint8_t> csim_data(const ref::Scene& scene, const SceneVolume& sv,
+                                    const hls::Units& units);
+
 // The source tree this binary was built from (compiled in).
 std::string default_source_root();
 
 // "vitis" (the only tool so far): elaborates the scene (loads its volume for
-// the data's range), writes elaborated_config.hpp and the scripts into out_dir
-// (created) and returns their paths, the header first.
+// the data's range), writes elaborated_config.hpp, the scripts and the csim
+// data (kCsimDataFile) into out_dir (created) and returns their paths, the
+// header first, the data last.
 std::vector<std::string> write_synth_scripts(const ref::Scene& scene, const std::string& scene_name,
                                              const rtl::board::Board& board,
                                              const std::string& tool, const std::string& out_dir,

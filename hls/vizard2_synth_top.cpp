@@ -17,39 +17,16 @@
 // each preset (hls/CMakeLists.txt) and for two elaborated scenes
 // (tests/CMakeLists.txt), and tools/synth_lint checks it.
 #include <cstdint>
-#include <type_traits>
 
 #include "hls/pragma.hpp"
-#include "hls/units.hpp"
+#include "hls/vizard2_synth_config.hpp"
 #include "hls/vizard2_top.hpp"
-#include "refmodel/precision/profile_traits.hpp"
 
-namespace {
-#ifdef VOXCAST_ELABORATED_CONFIG  // elaborated_config.hpp, passed with -include
-using TopProfile = voxcast::elaborated::Profile;
-using TopUnits = voxcast::elaborated::Units;
-#ifdef VOXCAST_SYNTH_PROFILE
-static_assert(std::is_same<TopProfile, voxcast::VOXCAST_SYNTH_PROFILE>::value,
-              "elaborated_config.hpp was written for another precision profile");
-#endif
-// The sizes the elaboration derived from the data fit the profile's fields.
-static_assert(voxcast::elaborated::kValueStoreBits <= TopProfile::value_bits,
-              "the volume's values do not fit the profile's value field");
-static_assert(voxcast::elaborated::kGradientStoreBits <= TopProfile::gradient_bits,
-              "the gradients do not fit the profile's gradient field");
-static_assert(voxcast::elaborated::kClassEntries <= (1 << TopProfile::tf_addr_bits),
-              "the transfer function needs more classification entries than the profile has");
-#else
-#ifndef VOXCAST_SYNTH_PROFILE
-#error "define VOXCAST_SYNTH_PROFILE as one of Vizard2Traits, BalancedTraits, PreciseTraits, or -include elaborated_config.hpp"
-#endif
-using TopProfile = voxcast::VOXCAST_SYNTH_PROFILE;
-using TopUnits = voxcast::hls::AllUnits;
-#endif
-using Word = voxcast::hls::InterpolationParams<TopProfile>::packed_word_t;
-using Frame = voxcast::hls::FrameState<TopProfile, TopUnits>;
-using Pixel = voxcast::hls::OutputPixel<TopProfile>;
-}  // namespace
+using voxcast::hls::top::Frame;
+using voxcast::hls::top::Pixel;
+using voxcast::hls::top::TopProfile;
+using voxcast::hls::top::TopUnits;
+using voxcast::hls::top::Word;
 
 // The frame state and the 8 voxel banks in external memory (one AXI master
 // each, two banks per DIMM channel of the card), the frame buffer and the

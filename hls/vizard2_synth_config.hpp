@@ -1,0 +1,47 @@
+// The profile and units of the synthesized VIZARD II top (TopProfile,
+// TopUnits) and the types of its ports, shared by the top
+// (hls/vizard2_synth_top.cpp) and its C simulation testbench
+// (hls/tb/vizard2_frame_tb.cpp): from the scene's elaborated_config.hpp
+// (`voxcast synth-script`, passed with -include), else the full design
+// (AllUnits) for -DVOXCAST_SYNTH_PROFILE=Vizard2Traits | BalancedTraits |
+// PreciseTraits. C++14.
+#pragma once
+
+#include <type_traits>
+
+#include "hls/interpolation_processor.hpp"
+#include "hls/units.hpp"
+#include "hls/vizard2_top.hpp"
+#include "refmodel/precision/profile_traits.hpp"
+
+namespace voxcast {
+namespace hls {
+namespace top {
+#ifdef VOXCAST_ELABORATED_CONFIG  // elaborated_config.hpp, passed with -include
+using TopProfile = elaborated::Profile;
+using TopUnits = elaborated::Units;
+#ifdef VOXCAST_SYNTH_PROFILE
+static_assert(std::is_same<TopProfile, VOXCAST_SYNTH_PROFILE>::value,
+              "elaborated_config.hpp was written for another precision profile");
+#endif
+// The sizes the elaboration derived from the data fit the profile's fields.
+static_assert(elaborated::kValueStoreBits <= TopProfile::value_bits,
+              "the volume's values do not fit the profile's value field");
+static_assert(elaborated::kGradientStoreBits <= TopProfile::gradient_bits,
+              "the gradients do not fit the profile's gradient field");
+static_assert(elaborated::kClassEntries <= (1 << TopProfile::tf_addr_bits),
+              "the transfer function needs more classification entries than the profile has");
+#else
+#ifndef VOXCAST_SYNTH_PROFILE
+#error "define VOXCAST_SYNTH_PROFILE as one of Vizard2Traits, BalancedTraits, PreciseTraits, or -include elaborated_config.hpp"
+#endif
+using TopProfile = VOXCAST_SYNTH_PROFILE;
+using TopUnits = hls::AllUnits;
+#endif
+using Word = hls::InterpolationParams<TopProfile>::packed_word_t;
+using Frame = hls::FrameState<TopProfile, TopUnits>;
+using Pixel = hls::OutputPixel<TopProfile>;
+}  // namespace top
+}  // namespace hls
+}  // namespace voxcast
+
