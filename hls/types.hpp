@@ -1,42 +1,53 @@
 // The one header the voxcast kernels include for their fixed-point and integer types.
 //
-// Without VOXCAST_VENDOR_TYPES it uses voxcast's own bit-exact clone (hls/fixed_point.hpp);
-// with -DVOXCAST_VENDOR_TYPES it maps the same names onto AMD's ap_fixed / ap_ufixed / ap_int /
-// ap_uint (<ap_fixed.h>, <ap_int.h> from Vitis HLS or Xilinx/HLS_arbitrary_Precision_Types).
-// See docs/fixed-point.md.
+// By default it uses voxcast's own bit-exact clone of ap_fixed (hls/fixed_point.hpp); with
+// -DVOXCAST_VENDOR_TYPES it maps the same names onto AMD's ap_fixed / ap_ufixed / ap_int /
+// ap_uint (<ap_fixed.h>, <ap_int.h> from Vitis HLS or Xilinx/HLS_arbitrary_Precision_Types), with
+// -DVOXCAST_AC_TYPES onto Siemens Catapult's ac_fixed / ac_int (<ac_fixed.h>, <ac_int.h>).
+// CMake: VOXCAST_FIXED_TYPES = clone | xilinx | catapult. See docs/fixed-point.md.
+// This header is C++14 (Vitis HLS's front end): no inline variables, if constexpr or concepts.
 //
-// Kernels may only use the API both provide (anything else compiles with one and not the
-// other, or behaves differently):
+// Kernels may only use the API all three provide with the same results (anything else compiles
+// with one and not another, or behaves differently: docs/fixed-point.md, "Catapult's ac_fixed"):
 //
-//   Types      fixed<W, I, Q = TRN, O = WRAP, N = 0>, ufixed<...>, int_t<W>, uint_t<W>
+//   Types      fixed<W, I, Q = TRN, O = WRAP>, ufixed<...>, int_t<W>, uint_t<W>
 //              q_mode: RND, RND_ZERO, RND_MIN_INF, RND_INF, RND_CONV, TRN, TRN_ZERO
-//              o_mode: SAT, SAT_ZERO, SAT_SYM, WRAP, WRAP_SM (signed fixed only)
+//              o_mode: SAT, SAT_ZERO, SAT_SYM, WRAP
+//              (WRAP_SM and the saturation bits N > 0: clone and ap only; ac has neither.)
 //              W <= 128 for every type, operator results included (clone limit).
 //   Create     default construction (value unspecified: always assign before reading);
 //              construction / assignment from fixed, ufixed, int_t, uint_t, C integers,
 //              double and float (quantization and overflow of the destination apply).
+//              An int_t / uint_t from a fixed: int_cast<T>(x) (toward zero, then wrap).
 //   Arithmetic a + b, a - b, a * b, a / b, a & b, a | b, a ^ b where each operand is a
-//              fixed/ufixed/int_t/uint_t or a C integer (never double/float: ill-formed in
-//              both); a % b between integer types only; -a, ~a, !a; +=, -=, *=, /=, &=, |=,
-//              ^= with the same operands; ++/-- (fixed: only when I <= W);
+//              fixed/ufixed/int_t/uint_t or a C integer (never double/float: ill-formed);
+//              a % b between integer types only; -a, !a; ~a on signed types (on unsigned
+//              ones ac widens to a signed W+1-bit result: use only assigned straight into a
+//              W-bit unsigned); +=, -=, *=, /=, &=, |=, ^= with the same operands; ++/-- on
+//              int_t/uint_t only (on a fixed ap adds 1.0, ac one LSB);
 //              a << n, a >> n, <<=, >>= with n an int, unsigned, int_t or uint_t.
-//              Result types of fixed expressions are fixed<...>/ufixed<...> in both; result
-//              types of integer-only expressions differ (ap_int_base<> vs int_t<>), so never
-//              name them: use auto or assign to a declared type.
-//   Compare    == != < <= > >= between the operand kinds above, and with double.
-//   Convert    x.to_double(), to_float(), to_int(), to_uint(), to_int64(), to_uint64(),
-//              to_long(), to_ulong(); static_cast<double / float / int / bool / ...>(x).
-//              (The clone has no implicit conversions to C types; ap has them.)
-//   Bits       x[i], x.bit(i) (read; write with = bool); x.get_bit(i) on fixed (read);
-//              x.range(hi, lo), x.range(), x(hi, lo): read with .to_uint64(), .to_uint(),
-//              .to_int(), .to_int64(), .length(); write with = <C integer or int_t/uint_t>
-//              or = <another range>. x.setBits(u64), T::bitsToFixed(u64) on fixed.
-//   Queries    T::width; on fixed also T::iwidth, T::qmode, T::omode, x.is_neg(),
-//              x.is_zero(), x.wl(), x.iwl(); x.length(); x.countLeadingZeros(); x.getNeg()
-//              and x.lshift<K>() / x.rshift<K>() on fixed.
-//   Print      std::ostream << x (the clone prints the exact decimal value, ap rounds to the
-//              stream precision); x.to_string(10).
+//              Result types of fixed expressions are fixed/ufixed-like in all three, of
+//              integer-only expressions not (int_t<>, ap_int_base<>, ac_int<>): never name
+//              them, use auto or assign to a declared type.
+//   Compare    == != < <= > >= between the operand kinds above; between a signed and an
+//              unsigned operand only when the signed one cannot be negative or both are
+//              narrower than 32 bits (ap applies C's unsigned conversion, ac compares
+//              values); with double only when W <= 53.
+//   Convert    x.to_double(), to_int(), to_uint(), to_int64(), to_uint64(), to_long(),
+//              to_ulong(); on a fixed the to_int() family only when x is non-negative or
+//              integer-valued (ap truncates toward zero, ac floors). No static_cast of a
+//              fixed to a C type (ac_fixed has no conversion operators).
+//   Bits       x[i] (read; write with = bool); read_bits(x, hi, lo), write_bits(x, hi, lo,
+//              v): bits hi..lo (hi >= lo, at most 64) as / from a std::uint64_t, raw (no
+//              quantization or overflow; a signed x re-extends its sign); read_bits(x),
+//              write_bits(x, v): all T::width <= 64 bits.
+//   Queries    T::width, x.length(); fixed_iwidth<T>::value (I of a fixed type). The sign of
+//              a fixed: x < 0 (ac_fixed's is_neg() is private).
+//   Print      std::ostream << x.to_double().
 //
+// Clone and ap only (not ac): x.range(...), x.bit(i), x.get_bit(i), setBits, bitsToFixed,
+// is_neg(), is_zero(), wl(), iwl(), countLeadingZeros(), getNeg(), lshift<K>(), rshift<K>(),
+// T::iwidth, T::qmode, T::omode, to_float(), to_string(10), implicit/static_cast conversions.
 // Clone-only (tests and tools, never kernels): fixed_base, int_base, raw(), from_raw(),
 // get_range(), set_range(), set_bit(), nbits, is_signed, max_width, to_string() without radix.
 #pragma once
