@@ -145,7 +145,7 @@ TEST(ElaboratedTop, SynthScriptWritesTheElaboratedUnits) {
     const ref::Scene scene = ref::default_scene(sets);
     const auto paths =
         cosim::write_synth_scripts(scene, "test", board, "vitis", dir.string(), VOXCAST_SOURCE_DIR);
-    ASSERT_EQ(paths.size(), 2u);
+    ASSERT_EQ(paths.size(), 3u);
     EXPECT_EQ(fs::path(paths[0]).filename(), "elaborated_config.hpp");
     const std::string header = read(paths[0]);
     EXPECT_EQ(header_flags(header), flags_of(c.expected)) << header;

@@ -69,6 +69,12 @@ proc open_solution {args} { stub open_solution {-reset} {-flow_target {vitis viv
 proc set_part {args} { stub set_part {} {} 1 1 $args }
 proc create_clock {args} { stub create_clock {} {-period * -name *} 0 0 $args }
 proc csynth_design {args} { stub csynth_design {} {} 0 0 $args }
+proc csim_design {args} {
+  stub csim_design {-clean -O -setup -profile} {-argv * -ldflags * -mflags * -compiler {gcc clang}} 0 0 $args
+}
+proc cosim_design {args} {
+  stub cosim_design {-O -setup -disable_dependency_check} {-argv * -ldflags * -mflags * -rtl {verilog vhdl} -trace_level {none all port port_hier} -tool *} 0 0 $args
+}
 proc export_design {args} {
   stub export_design {} {-format {ip_catalog xo syn_dcp sysgen} -rtl {verilog vhdl} -output *} 0 0 $args
 }
@@ -133,7 +139,8 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
       const auto board = rtl::board::shipped_board(board_name);
       const auto paths = cosim::write_synth_scripts(scene, "scenes/default.toml", board, "vitis",
                                                     dir.string(), root);
-      ASSERT_EQ(paths.size(), 2u);  // elaborated_config.hpp, then the script
+      ASSERT_EQ(paths.size(), 3u);  // elaborated_config.hpp, the script, the csim data
+      EXPECT_EQ(fs::path(paths[2]).filename(), cosim::kCsimDataFile);
       const auto calls = run_with_stubs(paths[1]);
       ASSERT_FALSE(calls.empty());
       EXPECT_EQ(calls.back(), "exit");
@@ -150,25 +157,34 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
       EXPECT_TRUE(fs::is_regular_file(add_args[0])) << add_args[0];
       EXPECT_NE(read(add_args[0]).find("void " + function + "("), std::string::npos);
       EXPECT_EQ(add_args[1], "-cflags");
-      // The profile flag names a constant of the scene's preset.
-      const std::string constant = profile == "vizard2"    ? "kVizard2"
-                                   : profile == "balanced" ? "kBalanced"
-                                                           : "kPrecise";
+      // The profile flag names the traits type of the scene's preset.
+      const std::string constant = profile == "vizard2"    ? "Vizard2Traits"
+                                   : profile == "balanced" ? "BalancedTraits"
+                                                           : "PreciseTraits";
       EXPECT_NE(add_args[2].find("-DVOXCAST_SYNTH_PROFILE=" + constant), std::string::npos);
-      EXPECT_NE(read(root + "/refmodel/precision/preset_profiles.hpp")
-                    .find("inline constexpr PrecisionProfile " + constant),
+      EXPECT_NE(read(root + "/refmodel/precision/profile_traits.hpp").find("struct " + constant),
                 std::string::npos);
       EXPECT_NE(add_args[2].find("-I" + fs::path(root).lexically_normal().string()),
                 std::string::npos);
-      EXPECT_NE(add_args[2].find("-std=c++20"), std::string::npos);
+      // The vendor front ends' dialect; the host loaders stay out of csim too.
+      EXPECT_NE(add_args[2].find("-std=c++14"), std::string::npos);
+      EXPECT_NE(add_args[2].find("-DVOXCAST_HLS_KERNELS_ONLY"), std::string::npos);
       // The scene's units: the elaborated configuration written beside the script.
       EXPECT_NE(add_args[2].find("-include " + paths[0]), std::string::npos) << add_args[2];
-      // Every added file exists.
+      // Every added file exists; the testbench is one (-tb) and runs on the data.
+      int testbenches = 0;
       for (const auto& c : calls) {
         if (c.rfind("add_files ", 0) == 0) {
-          EXPECT_TRUE(fs::is_regular_file(args_of(c).at(0))) << c;
+          const auto a = args_of(c);
+          const bool tb = a.at(0) == "-tb";
+          testbenches += tb ? 1 : 0;
+          EXPECT_TRUE(fs::is_regular_file(a.at(tb ? 1 : 0))) << c;
         }
       }
+      EXPECT_EQ(testbenches, 1);
+      const auto* csim = find_call(calls, "csim_design ");
+      ASSERT_NE(csim, nullptr);
+      EXPECT_EQ(args_of(*csim).at(1), fs::path(paths[2]).parent_path().string());
 
       // Part and clock from the board.
       const auto* part = find_call(calls, "set_part ");
@@ -184,8 +200,9 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
       std::vector<std::string> order;
       for (const auto& c : calls) order.push_back(c.substr(0, c.find(' ')));
       const std::vector<std::string> want = {
-          "open_project",  "set_top",  "add_files",    "add_files",     "add_files",
-          "open_solution", "set_part", "create_clock", "csynth_design", "export_design", "exit"};
+          "open_project", "set_top",      "add_files",   "add_files",     "add_files",
+          "add_files",    "open_solution", "set_part",   "create_clock",  "csim_design",
+          "csynth_design", "export_design", "exit"};
       EXPECT_EQ(order, want);
     }
   }
