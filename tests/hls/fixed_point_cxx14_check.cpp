@@ -12,11 +12,11 @@
 //
 // As a file of tests/hls it is also part of voxcast_tests_hls, i.e. compiled as C++20 with the
 // project's warnings: the same code must mean the same in both.
-#include "hls/fixed_point.hpp"
-
 #include <cstdint>
 #include <type_traits>
 #include <utility>
+
+#include "hls/fixed_point.hpp"
 #ifndef __SYNTHESIS__
 #include <sstream>
 #include <string>
@@ -59,8 +59,8 @@ struct can_increment<A, void_t<decltype(++std::declval<A&>()), decltype(std::dec
 template <class A, class B, class = void>
 struct can_shift : std::false_type {};
 template <class A, class B>
-struct can_shift<A, B, void_t<decltype(std::declval<A>() << std::declval<B>())>>
-    : std::true_type {};
+struct can_shift<A, B, void_t<decltype(std::declval<A>() << std::declval<B>())>> : std::true_type {
+};
 
 using A8 = fixed<8, 4>;
 using U6 = ufixed<6, 2>;
@@ -79,8 +79,9 @@ static_assert(std::is_constructible<A8, double>::value && std::is_constructible<
               "from double and float");
 static_assert(!std::is_convertible<A8, double>::value, "explicit conversions only");
 static_assert(std::is_trivially_copyable<A8>::value && sizeof(fixed<100, 4>) == 16, "storage");
-static_assert(!std::is_assignable<decltype(std::declval<const A8&>().range(3, 0))&, unsigned>::value,
-              "a const x's range is read only");
+static_assert(
+    !std::is_assignable<decltype(std::declval<const A8&>().range(3, 0))&, unsigned>::value,
+    "a const x's range is read only");
 static_assert(!std::is_copy_assignable<decltype(std::declval<const A8&>().range(3, 0))>::value,
               "a const x's range is read only");
 static_assert(std::is_assignable<decltype(std::declval<A8&>().range(3, 0))&, unsigned>::value,
@@ -98,8 +99,9 @@ static_assert(std::is_same<decltype(v<A8>() + 1u), fixed<38, 34>>::value, "+ uns
 static_assert(std::is_same<decltype(v<int_t<8>>() % v<uint_t<5>>()), int_t<6>>::value, "%");
 static_assert(std::is_same<decltype(-v<uint_t<8>>()), int_t<9>>::value, "unary -");
 static_assert(std::is_same<decltype(~v<fixed<8, 4, RND, SAT>>()), fixed<8, 4>>::value, "~");
-static_assert(std::is_same<decltype(v<fixed<64, 32>>() * v<fixed<64, 32>>()), fixed<128, 64>>::value,
-              "128-bit product");
+static_assert(
+    std::is_same<decltype(v<fixed<64, 32>>() * v<fixed<64, 32>>()), fixed<128, 64>>::value,
+    "128-bit product");
 
 // ---- Constant evaluation (values from the C++20 build) -------------------------------------
 static_assert(fixed<8, 4>(1.5).to_double() == 1.5, "double in and out");
@@ -113,7 +115,8 @@ static_assert(fixed<4, 4, TRN, SAT_SYM>(-8).raw() == -7, "SAT_SYM");
 static_assert(fixed<6, 3, RND_CONV>(0.0625).raw() == 0 && fixed<6, 3, RND_CONV>(0.1875).raw() == 2,
               "RND_CONV ties to even");
 static_assert(int_t<70>(-5).to_int64() == -5 && uint_t<8>(300).to_uint() == 44, "wrap");
-static_assert(fixed<16, 8>(1.0).countLeadingZeros() == 7 && uint_t<100>(1).countLeadingZeros() == 99,
+static_assert(fixed<16, 8>(1.0).countLeadingZeros() == 7 &&
+                  uint_t<100>(1).countLeadingZeros() == 99,
               "countLeadingZeros");
 static_assert((fixed<8, 4>(3.25) << 2).to_double() == -3.0 && (int_t<8>(1) << 7).to_int() == -128,
               "shifts");
@@ -153,15 +156,18 @@ template <q_mode Q>
 std::uint64_t every_overflow_mode(double d) {
   std::uint64_t h = 0;
   h += conversions_into<fixed<8, 3, Q, SAT>>(d) + conversions_into<ufixed<8, 3, Q, SAT>>(d);
-  h += conversions_into<fixed<8, 3, Q, SAT_ZERO>>(d) + conversions_into<ufixed<8, 3, Q, SAT_ZERO>>(d);
+  h += conversions_into<fixed<8, 3, Q, SAT_ZERO>>(d) +
+       conversions_into<ufixed<8, 3, Q, SAT_ZERO>>(d);
   h += conversions_into<fixed<8, 3, Q, SAT_SYM>>(d) + conversions_into<ufixed<8, 3, Q, SAT_SYM>>(d);
   h += conversions_into<fixed<1, 1, Q, SAT_SYM>>(d);
   h += conversions_into<fixed<8, 3, Q, WRAP>>(d) + conversions_into<ufixed<8, 3, Q, WRAP>>(d);
   h += conversions_into<fixed<8, 3, Q, WRAP, 1>>(d) + conversions_into<fixed<8, 3, Q, WRAP, 3>>(d);
   h += conversions_into<ufixed<8, 3, Q, WRAP, 2>>(d);
-  h += conversions_into<fixed<8, 3, Q, WRAP_SM>>(d) + conversions_into<fixed<8, 3, Q, WRAP_SM, 1>>(d);
+  h += conversions_into<fixed<8, 3, Q, WRAP_SM>>(d) +
+       conversions_into<fixed<8, 3, Q, WRAP_SM, 1>>(d);
   h += conversions_into<fixed<8, 3, Q, WRAP_SM, 2>>(d);
-  h += conversions_into<fixed<64, 20, Q, SAT>>(d) + conversions_into<fixed<128, 70, Q, WRAP_SM, 2>>(d);
+  h += conversions_into<fixed<64, 20, Q, SAT>>(d) +
+       conversions_into<fixed<128, 70, Q, WRAP_SM, 2>>(d);
   h += conversions_into<ufixed<120, -8, Q, SAT_SYM>>(d) + conversions_into<fixed<8, 12, Q, SAT>>(d);
   return h;
 }
@@ -229,7 +235,8 @@ std::uint64_t one_operand(T x) {
   h += static_cast<std::uint64_t>(x.to_double() + static_cast<double>(x.to_float()));
   h += static_cast<std::uint64_t>(x.to_int() + x.to_long() + x.to_int64() + x.to_char());
   h += x.to_uint() + x.to_uint64() + x.to_ulong() + x.to_bool();
-  h += static_cast<std::uint64_t>(static_cast<double>(x) + static_cast<double>(static_cast<float>(x)));
+  h += static_cast<std::uint64_t>(static_cast<double>(x) +
+                                  static_cast<double>(static_cast<float>(x)));
   h += static_cast<std::uint64_t>(static_cast<int>(x) + static_cast<long long>(x) +
                                   static_cast<signed char>(x));
   h += static_cast<unsigned>(x) + static_cast<unsigned long long>(x) + static_cast<bool>(x);
@@ -237,8 +244,10 @@ std::uint64_t one_operand(T x) {
   // Bits and ranges (section 10).
   h += static_cast<bool>(x[0]) + static_cast<bool>(x.bit(1)) + x.range(3, 0).to_uint64() +
        x.range(0, 3).to_uint() + x(2, 1).to_uint64();
-  h += static_cast<std::uint64_t>(x.range().to_int() + x.range(3, 0).to_int64() + x.range().length());
-  h += static_cast<std::uint64_t>(x.range(3, 0) == 5u) + static_cast<std::uint64_t>(x.get_range(3, 0));
+  h += static_cast<std::uint64_t>(x.range().to_int() + x.range(3, 0).to_int64() +
+                                  x.range().length());
+  h += static_cast<std::uint64_t>(x.range(3, 0) == 5u) +
+       static_cast<std::uint64_t>(x.get_range(3, 0));
   const T& cx = x;
   h += cx[1] + cx.bit(0) + cx.range(3, 0).to_uint() + cx(3, 1).to_uint64() + cx.range().to_uint();
   y[0] = true;
@@ -304,8 +313,8 @@ std::uint64_t operators() {
   h += integer_compound(ui64, 7ULL);
   // Comparisons with double, both sides.
   h += static_cast<std::uint64_t>((a == 0.5) + (a != 0.5) + (a < 0.5) + (a <= 0.5) + (a > 0.5) +
-                                  (a >= 0.5) + (0.5 == a) + (0.5 != a) + (0.5 < a) +
-                                  (0.5 <= a) + (0.5 > a) + (0.5 >= a) + (i < 2.0) + (2.0 >= u));
+                                  (a >= 0.5) + (0.5 == a) + (0.5 != a) + (0.5 < a) + (0.5 <= a) +
+                                  (0.5 > a) + (0.5 >= a) + (i < 2.0) + (2.0 >= u));
   h += fixed_only(a) + fixed_only(b) + fixed_only(tiny) + fixed_only(big) + fixed_only(u64);
   h += fixed_only(fixed<8, 4, RND, SAT>(1.5)) + fixed_only(fixed<12, 3, RND_CONV, WRAP_SM, 2>(2));
   h += int_only(i) + int_only(u) + int_only(i64) + int_only(ui64) + int_only(u100);
@@ -335,7 +344,8 @@ std::uint64_t static_members() {
 std::string printing() {
   std::ostringstream os;
   os << fixed<8, 4>(-2.75) << ' ' << ufixed<12, 4>::from_raw(0xabc) << ' ' << int_t<8>(-128);
-  os << ' ' << uint_t<128>(7) << ' ' << fixed<128, 0>::from_raw(-1) << ' ' << fixed<8, -200>::from_raw(-3);
+  os << ' ' << uint_t<128>(7) << ' ' << fixed<128, 0>::from_raw(-1) << ' '
+     << fixed<8, -200>::from_raw(-3);
   os << ' ' << fixed<8, 200>::from_raw(5) << ' ' << ufixed<8, 130>::from_raw(5) << ' ';
   os << fixed<8, 4>(-2.75).to_string(2) << ' ' << ufixed<12, 4>::from_raw(0xabc).to_string(16);
   os << ' ' << int_t<70>(-5).to_string() << ' ' << int_t<70>(-5).to_string(16);
