@@ -16,25 +16,51 @@
 // Limits: 1 <= W <= 128 for every type, including the result types of the binary operators
 // (a 64 x 64-bit product is 128 bits; a 128-bit operand can only take part in operations whose
 // result stays within 128 bits). No heap, no exceptions, no virtual functions.
+//
+// Language level: C++14, as the vendor front ends read it (UG1399); the header is included by
+// synthesizable tops. It compiles unchanged as C++17/20 (the rest of voxcast), with the same
+// overloads and results. Where newer features would have been natural:
+//  - constraints are std::enable_if_t on the traits ap_type, fixed_type, operands, ...
+//    (structs of the same names), so overload resolution sees the same candidates;
+//  - compile-time branches that must not be instantiated together (different result types,
+//    shift counts that are out of range in the branch not taken) are overloads picked by a tag
+//    (bool_c / int_c / a small struct); the others are plain `if`s on constants;
+//  - the bits of a double come from __builtin_bit_cast (constexpr in GCC >= 11 and clang >= 9;
+//    a front end without it gets memcpy, and conversions from double are then not constant
+//    expressions); leading zeros come from __builtin_clzll;
+//  - static constexpr data members are defined at namespace scope as well before C++17.
+// Printing (to_string, operator<<, <string>, <ostream>) is host-only: absent under __SYNTHESIS__.
 #pragma once
 
-#include <bit>
-#include <charconv>
-#include <concepts>
 #include <cstdint>
+#include <type_traits>
+
+#ifndef __SYNTHESIS__
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <ostream>
 #include <string>
-#include <type_traits>
-#include <utility>
+#endif
 
-namespace voxcast::hls {
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_bit_cast)
+#define VOXCAST_HLS_HAS_BIT_CAST 1
+#endif
+#endif
+#ifndef VOXCAST_HLS_HAS_BIT_CAST
+#include <cstring>
+#endif
+
+namespace voxcast {
+namespace hls {
 
 // Semantics section 1: same enumerators, same order as ap_q_mode / ap_o_mode.
 enum q_mode { RND, RND_ZERO, RND_MIN_INF, RND_INF, RND_CONV, TRN, TRN_ZERO };
 enum o_mode { SAT, SAT_ZERO, SAT_SYM, WRAP, WRAP_SM };
 
 // The widest type (stored or produced by an operator) the clone represents: one __int128.
-inline constexpr int max_width = 128;
+constexpr int max_width = 128;
 
 template <int W, int I, bool S, q_mode Q = TRN, o_mode O = WRAP, int N = 0>
 class fixed_base;
@@ -59,6 +85,25 @@ __extension__ typedef unsigned __int128 u128;
 constexpr int imax(int a, int b) { return a > b ? a : b; }
 constexpr int imin(int a, int b) { return a < b ? a : b; }
 
+// Compile-time branch tags: overloads taking bool_c<true> / bool_c<false> (or int_c<k>) are the
+// branches of a decision known at compile time; only the one taken is instantiated. (Not
+// std::integral_constant: a std tag would bring namespace std into argument-dependent lookup,
+// where std::equal and std::shift_left would compete with the functions below.)
+template <bool B>
+struct bool_c {
+  static constexpr bool value = B;
+};
+template <int K>
+struct int_c {};
+
+// The enable_if_t of a constrained template:
+// `template <class T, enable_if_c<trait<T>::value> = 0>`.
+template <bool B>
+using enable_if_c = std::enable_if_t<B, int>;
+
+template <class T>
+using remove_cvref_t = std::remove_cv_t<std::remove_reference_t<T>>;
+
 // Tag of the internal constructor that stores an already canonical raw value.
 struct exact_tag {};
 
@@ -68,7 +113,9 @@ using word_t = std::conditional_t<(W <= 64), std::uint64_t, u128>;
 template <class U>
 using sword_t = std::conditional_t<(sizeof(U) == 8), std::int64_t, i128>;
 template <class U>
-inline constexpr int word_bits = static_cast<int>(sizeof(U) * 8);
+constexpr int word_bits() noexcept {
+  return static_cast<int>(sizeof(U) * 8);
+}
 template <int W, bool S>
 using raw_t = std::conditional_t<(W <= 64), std::conditional_t<S, std::int64_t, std::uint64_t>,
                                  std::conditional_t<S, i128, u128>>;
@@ -77,7 +124,7 @@ using raw_t = std::conditional_t<(W <= 64), std::conditional_t<S, std::int64_t, 
 template <class U>
 constexpr U low_mask(int n) noexcept {
   if (n <= 0) return U(0);
-  if (n >= word_bits<U>) return ~U(0);
+  if (n >= word_bits<U>()) return ~U(0);
   return (U(1) << n) - U(1);
 }
 
@@ -85,21 +132,66 @@ constexpr U low_mask(int n) noexcept {
 template <class U>
 constexpr bool bit_of(U bits, bool neg, int k) noexcept {
   if (k < 0) return false;
-  if (k >= word_bits<U>) return neg;
+  if (k >= word_bits<U>()) return neg;
   return ((bits >> k) & U(1)) != 0;
 }
 
+// x << K for a compile-time K; 0 once K reaches the word size (where C++'s shift is undefined).
+template <int K, class U>
+constexpr U shift_left(U x, bool_c<true> /* K < word size */) noexcept {
+  return static_cast<U>(x << K);
+}
+template <int K, class U>
+constexpr U shift_left(U, bool_c<false> /* K >= word size */) noexcept {
+  return U(0);
+}
+template <int K, class U>
+constexpr U shift_left(U x) noexcept {
+  return shift_left<K>(x, bool_c<(K < word_bits<U>())>{});
+}
+
+// Leading zeros of a whole word (64 resp. 128 for 0).
+constexpr int count_leading_zeros(std::uint64_t x) noexcept {
+  return x == 0 ? 64 : __builtin_clzll(x);
+}
+constexpr int count_leading_zeros(u128 x) noexcept {
+  const auto hi = static_cast<std::uint64_t>(x >> 64);
+  const auto lo = static_cast<std::uint64_t>(x);
+  return hi != 0 ? count_leading_zeros(hi) : 64 + count_leading_zeros(lo);
+}
+
+// v < 0 for a signed raw value; an unsigned one is never negative (and is not compared).
+template <class R>
+constexpr bool negative(R v, bool_c<true> /* signed */) noexcept {
+  return v < 0;
+}
+template <class R>
+constexpr bool negative(R, bool_c<false> /* unsigned */) noexcept {
+  return false;
+}
+
 // Canonical form: the low W bits sign-extended (S) or zero-extended (!S) to the whole word.
+struct whole_word {};
+struct sign_fill {};
+struct zero_fill {};
+template <int W, class U>
+constexpr U extend_as(U x, whole_word) noexcept {
+  return x;
+}
+template <int W, class U>
+constexpr U extend_as(U x, sign_fill) noexcept {
+  constexpr int B = word_bits<U>();
+  return static_cast<U>(static_cast<sword_t<U>>(x << (B - W)) >> (B - W));
+}
+template <int W, class U>
+constexpr U extend_as(U x, zero_fill) noexcept {
+  return x & low_mask<U>(W);
+}
 template <int W, bool S, class U>
 constexpr U extend(U x) noexcept {
-  constexpr int B = word_bits<U>;
-  if constexpr (W >= B) {
-    return x;
-  } else if constexpr (S) {
-    return static_cast<U>(static_cast<sword_t<U>>(x << (B - W)) >> (B - W));
-  } else {
-    return x & low_mask<U>(W);
-  }
+  using how = std::conditional_t<(W >= word_bits<U>()), whole_word,
+                                 std::conditional_t<S, sign_fill, zero_fill>>;
+  return extend_as<W>(x, how{});
 }
 
 // A value as a word plus its sign: value = neg ? bits - 2^B : bits. A negative value always has
@@ -114,11 +206,8 @@ struct wide {
 template <class U, bool S, class R>
 constexpr wide<U> widen(R raw) noexcept {
   const U bits = static_cast<U>(raw);  // sign-extends signed raws, zero-extends unsigned ones
-  if constexpr (S) {
-    return {bits, static_cast<sword_t<U>>(bits) < 0};
-  } else {
-    return {bits, false};
-  }
+  if (S) return {bits, static_cast<sword_t<U>>(bits) < 0};
+  return {bits, false};
 }
 
 // Sets bits [lo, hi] of x to 1 (set) or 0 (!set).
@@ -157,7 +246,7 @@ template <int Wt, bool St, o_mode O, int N, class U>
 constexpr void detect_range(rounded<U>& r) noexcept {
   using SU = sword_t<U>;
   using TB = target_bounds<Wt, St, U>;
-  if constexpr (!(O == WRAP && N == 0)) {  // section 3: plain WRAP never looks
+  if (!(O == WRAP && N == 0)) {  // section 3: plain WRAP never looks
     if (r.neg) {
       r.unf = !St || static_cast<SU>(r.t) < static_cast<SU>(TB::min_t);
     } else {
@@ -169,8 +258,11 @@ constexpr void detect_range(rounded<U>& r) noexcept {
 // d >= 1 source bits drop below the target LSB: section 2.
 template <int Wt, bool St, q_mode Q, o_mode O, int N, class U>
 constexpr rounded<U> round_down(U bits, bool neg, int d) noexcept {
+  static_assert(Q == RND || Q == RND_ZERO || Q == RND_MIN_INF || Q == RND_INF || Q == RND_CONV ||
+                    Q == TRN || Q == TRN_ZERO,
+                "voxcast::hls: unknown q_mode");
   using SU = sword_t<U>;
-  constexpr int B = word_bits<U>;
+  constexpr int B = word_bits<U>();
   rounded<U> r{0, neg, false, false, false};
   bool qb = false;  // first dropped bit
   bool rb = false;  // OR of the dropped bits below qb (sticky)
@@ -186,23 +278,22 @@ constexpr rounded<U> round_down(U bits, bool neg, int d) noexcept {
   }
   // The table of section 2; s is the sign of the source.
   bool inc = false;
-  if constexpr (Q == TRN) {
+  if (Q == TRN) {
     inc = false;
-  } else if constexpr (Q == TRN_ZERO) {
+  } else if (Q == TRN_ZERO) {
     inc = neg && (qb || rb);
-  } else if constexpr (Q == RND) {
+  } else if (Q == RND) {
     inc = qb;
-  } else if constexpr (Q == RND_ZERO) {
+  } else if (Q == RND_ZERO) {
     inc = qb && (neg || rb);
-  } else if constexpr (Q == RND_MIN_INF) {
+  } else if (Q == RND_MIN_INF) {
     inc = qb && rb;
-  } else if constexpr (Q == RND_INF) {
+  } else if (Q == RND_INF) {
     inc = qb && (!neg || rb);
-  } else {
-    static_assert(Q == RND_CONV);
+  } else {  // RND_CONV
     inc = qb && ((r.t & U(1)) != 0 || rb);
   }
-  if constexpr (O == WRAP_SM && N == 0) r.ld = bit_of<U>(r.t, neg, Wt);
+  if (O == WRAP_SM && N == 0) r.ld = bit_of<U>(r.t, neg, Wt);
   // The carry can move -1 LSB to 0; it never leaves the word because a floor shift by d >= 1
   // halves the magnitude.
   r.t += static_cast<U>(inc);
@@ -215,7 +306,7 @@ constexpr rounded<U> round_down(U bits, bool neg, int d) noexcept {
 template <int Wt, bool St, o_mode O, int N, class U>
 constexpr rounded<U> keep(U bits, bool neg) noexcept {
   rounded<U> r{bits, neg, false, false, false};
-  if constexpr (O == WRAP_SM && N == 0) r.ld = bit_of<U>(bits, neg, Wt);
+  if (O == WRAP_SM && N == 0) r.ld = bit_of<U>(bits, neg, Wt);
   detect_range<Wt, St, O, N>(r);
   return r;
 }
@@ -226,81 +317,111 @@ template <int Wt, bool St, o_mode O, int N, class U>
 constexpr rounded<U> shift_up(U bits, bool neg, int e) noexcept {
   using SU = sword_t<U>;
   using TB = target_bounds<Wt, St, U>;
-  constexpr int B = word_bits<U>;
+  constexpr int B = word_bits<U>();
   rounded<U> r{e >= B ? U(0) : U(bits << e), neg, false, false, false};
-  if constexpr (!(O == WRAP && N == 0)) {
+  if (!(O == WRAP && N == 0)) {
     if (neg) {
       r.unf = !St || e >= Wt || static_cast<SU>(bits) < (static_cast<SU>(TB::min_t) >> e);
     } else {
       r.ovf = bits > (e >= B ? U(0) : U(TB::max_t >> e));
     }
   }
-  if constexpr (O == WRAP_SM && N == 0) r.ld = bit_of<U>(bits, neg, Wt - e);
+  if (O == WRAP_SM && N == 0) r.ld = bit_of<U>(bits, neg, Wt - e);
   return r;
 }
 
 // Section 3: overflow handling on the rounded value; returns the low word bits (the caller
-// extends them to Wt bits).
-template <int Wt, bool St, o_mode O, int N, class U>
-constexpr U handle_overflow(const rounded<U>& r) noexcept {
+// extends them to Wt bits). One overload per mode (the tag is the mode).
+template <o_mode O>
+struct o_mode_c {};
+
+template <int Wt, bool St, int N, class U>
+constexpr U handle_overflow(const rounded<U>& r, o_mode_c<SAT>) noexcept {
+  using TB = target_bounds<Wt, St, U>;
+  return r.ovf ? TB::max_t : (r.unf ? TB::min_t : r.t);
+}
+template <int Wt, bool St, int N, class U>
+constexpr U handle_overflow(const rounded<U>& r, o_mode_c<SAT_ZERO>) noexcept {
+  return (r.ovf || r.unf) ? U(0) : r.t;
+}
+template <int Wt, bool St, int N, class U>
+constexpr U handle_overflow(const rounded<U>& r, o_mode_c<SAT_SYM>) noexcept {
   using SU = sword_t<U>;
   using TB = target_bounds<Wt, St, U>;
-  if constexpr (O == WRAP && N == 0) {
-    return r.t;
-  } else if constexpr (O == SAT) {
-    return r.ovf ? TB::max_t : (r.unf ? TB::min_t : r.t);
-  } else if constexpr (O == SAT_ZERO) {
-    return (r.ovf || r.unf) ? U(0) : r.t;
-  } else if constexpr (O == SAT_SYM) {
-    // -MAX is built as MIN | 1, as in ap (which makes W = 1 give -1 = MIN). A signed result
-    // equal to MIN becomes -MAX too, except for W = 1 where the range is {-1, 0}.
-    if (r.ovf) return TB::max_t;
-    if (r.unf) return St ? U(TB::min_t | U(1)) : U(0);
-    if constexpr (St && Wt > 1) {
-      if (r.neg && static_cast<SU>(r.t) == static_cast<SU>(TB::min_t)) return TB::min_t | U(1);
-    }
-    return r.t;
-  } else if constexpr (O == WRAP) {
-    // N > 0: saturate the top N bits. Unsigned sets them on underflow as well.
-    if (!(r.ovf || r.unf)) return r.t;
-    if constexpr (St) {
-      U v = assign_bits<U>(r.t, Wt - 1, Wt - 1, r.neg);
-      if constexpr (N > 1) v = assign_bits<U>(v, Wt - N, Wt - 2, !r.neg);
-      return v;
-    } else {
-      return assign_bits<U>(r.t, Wt - N, Wt - 1, true);
-    }
-  } else {
-    static_assert(O == WRAP_SM && St, "WRAP_SM is signed only");
-    if (!(r.ovf || r.unf)) return r.t;
-    U v = r.t;
-    const bool ro = ((v >> (Wt - 1)) & U(1)) != 0;
-    if constexpr (N == 0) {
-      if (r.ld != ro) v = assign_bits<U>(~v, Wt - 1, Wt - 1, r.ld);
-    } else if constexpr (N == 1) {
-      if (r.neg != ro) v = ~v;
-      v = assign_bits<U>(v, Wt - 1, Wt - 1, r.neg);
-    } else {
-      if ((((v >> (Wt - N)) & U(1)) != 0) == r.neg) v = ~v;
-      v = assign_bits<U>(v, Wt - N, Wt - 2, !r.neg);
-      v = assign_bits<U>(v, Wt - 1, Wt - 1, r.neg);
-    }
+  // -MAX is built as MIN | 1, as in ap (which makes W = 1 give -1 = MIN). A signed result
+  // equal to MIN becomes -MAX too, except for W = 1 where the range is {-1, 0}.
+  if (r.ovf) return TB::max_t;
+  if (r.unf) return St ? U(TB::min_t | U(1)) : U(0);
+  if (St && Wt > 1) {
+    if (r.neg && static_cast<SU>(r.t) == static_cast<SU>(TB::min_t)) return TB::min_t | U(1);
+  }
+  return r.t;
+}
+template <int Wt, bool St, int N, class U>
+constexpr U handle_overflow(const rounded<U>& r, o_mode_c<WRAP>) noexcept {
+  if (N == 0) return r.t;
+  // N > 0: saturate the top N bits. Unsigned sets them on underflow as well.
+  if (!(r.ovf || r.unf)) return r.t;
+  if (St) {
+    U v = assign_bits<U>(r.t, Wt - 1, Wt - 1, r.neg);
+    if (N > 1) v = assign_bits<U>(v, Wt - N, Wt - 2, !r.neg);
     return v;
   }
+  return assign_bits<U>(r.t, Wt - N, Wt - 1, true);
+}
+
+// WRAP_SM (signed only): the wrapped bits, sign-magnitude style; one overload per N = 0, 1, > 1.
+template <int Wt, int N, class U>
+constexpr U wrap_sign_magnitude(U v, const rounded<U>& r, bool ro, int_c<0> /* N = 0 */) noexcept {
+  if (r.ld != ro) v = assign_bits<U>(~v, Wt - 1, Wt - 1, r.ld);
+  return v;
+}
+template <int Wt, int N, class U>
+constexpr U wrap_sign_magnitude(U v, const rounded<U>& r, bool ro, int_c<1> /* N = 1 */) noexcept {
+  if (r.neg != ro) v = ~v;
+  return assign_bits<U>(v, Wt - 1, Wt - 1, r.neg);
+}
+template <int Wt, int N, class U>
+constexpr U wrap_sign_magnitude(U v, const rounded<U>& r, bool, int_c<2> /* N > 1 */) noexcept {
+  if ((((v >> (Wt - N)) & U(1)) != 0) == r.neg) v = ~v;
+  v = assign_bits<U>(v, Wt - N, Wt - 2, !r.neg);
+  return assign_bits<U>(v, Wt - 1, Wt - 1, r.neg);
+}
+template <int Wt, bool St, int N, class U>
+constexpr U handle_overflow(const rounded<U>& r, o_mode_c<WRAP_SM>) noexcept {
+  static_assert(St, "WRAP_SM is signed only");
+  if (!(r.ovf || r.unf)) return r.t;
+  const U v = r.t;
+  const bool ro = ((v >> (Wt - 1)) & U(1)) != 0;
+  return wrap_sign_magnitude<Wt, N>(v, r, ro, int_c<(N > 1 ? 2 : N)>{});
+}
+
+template <int Wt, bool St, o_mode O, int N, class U>
+constexpr U handle_overflow(const rounded<U>& r) noexcept {
+  static_assert(O == SAT || O == SAT_ZERO || O == SAT_SYM || O == WRAP || O == WRAP_SM,
+                "voxcast::hls: unknown o_mode");
+  return handle_overflow<Wt, St, N>(r, o_mode_c<O>{});
 }
 
 // Fixed and integer sources: D = source fraction bits - target fraction bits, known at
-// compile time.
+// compile time; the tag is its sign.
+template <int Wt, bool St, q_mode Q, o_mode O, int N, int D, class U>
+constexpr rounded<U> rescale(U bits, bool neg, int_c<1> /* D > 0 */) noexcept {
+  return round_down<Wt, St, Q, O, N>(bits, neg, D);
+}
+template <int Wt, bool St, q_mode Q, o_mode O, int N, int D, class U>
+constexpr rounded<U> rescale(U bits, bool neg, int_c<0> /* D == 0 */) noexcept {
+  return keep<Wt, St, O, N>(bits, neg);
+}
+template <int Wt, bool St, q_mode Q, o_mode O, int N, int D, class U>
+constexpr rounded<U> rescale(U bits, bool neg, int_c<-1> /* D < 0 */) noexcept {
+  return shift_up<Wt, St, O, N>(bits, neg, -D);
+}
 template <int Wt, bool St, q_mode Q, o_mode O, int N, int D, class U>
 constexpr U quantize(U bits, bool neg) noexcept {
-  static_assert(Wt <= word_bits<U>, "working word narrower than the target");
-  if constexpr (D > 0) {
-    return handle_overflow<Wt, St, O, N>(round_down<Wt, St, Q, O, N>(bits, neg, D));
-  } else if constexpr (D == 0) {
-    return handle_overflow<Wt, St, O, N>(keep<Wt, St, O, N>(bits, neg));
-  } else {
-    return handle_overflow<Wt, St, O, N>(shift_up<Wt, St, O, N>(bits, neg, -D));
-  }
+  static_assert(Wt <= word_bits<U>(), "working word narrower than the target");
+  return handle_overflow<Wt, St, O, N>(
+      rescale<Wt, St, Q, O, N, D>(bits, neg, int_c<(D > 0 ? 1 : (D == 0 ? 0 : -1))>{}));
 }
 
 // Double sources: the shift depends on the exponent.
@@ -317,8 +438,21 @@ struct double_parts {
   std::int64_t m;  // signed mantissa
   int fs;          // fraction bits: value = m * 2^-fs
 };
-constexpr double_parts decode(double x) noexcept {
-  const auto b = std::bit_cast<std::uint64_t>(x);
+#ifdef VOXCAST_HLS_HAS_BIT_CAST
+constexpr std::uint64_t double_bits(double x) noexcept {
+  return __builtin_bit_cast(std::uint64_t, x);
+}
+#define VOXCAST_HLS_DECODE_CONSTEXPR constexpr
+#else
+inline std::uint64_t double_bits(double x) noexcept {
+  std::uint64_t b = 0;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+#define VOXCAST_HLS_DECODE_CONSTEXPR
+#endif
+VOXCAST_HLS_DECODE_CONSTEXPR inline double_parts decode(double x) noexcept {
+  const auto b = double_bits(x);
   const bool sign = (b >> 63) != 0;
   const int ex = static_cast<int>((b >> 52) & 0x7ffU);
   std::uint64_t mant = b & ((std::uint64_t{1} << 52) - 1);
@@ -330,6 +464,7 @@ constexpr double_parts decode(double x) noexcept {
   const auto m = static_cast<std::int64_t>(mant);
   return {sign ? -m : m, -e};
 }
+#undef VOXCAST_HLS_DECODE_CONSTEXPR
 
 // x * 2^E for a compile-time E, exact whenever the result is a normal double.
 constexpr double pow2(int e) noexcept {
@@ -339,51 +474,58 @@ constexpr double pow2(int e) noexcept {
   return r;
 }
 template <int E>
+constexpr double scale(double x, bool_c<true> /* 2^E is a normal double */) noexcept {
+  constexpr double s = pow2(E);
+  return x * s;
+}
+template <int E>
+constexpr double scale(double x, bool_c<false>) noexcept {
+  // Outside the normal exponent range (ap returns garbage here, section 9): two exact steps,
+  // so the result only rounds (a second time) if it is subnormal.
+  constexpr int e1 = E / 2;
+  constexpr double s1 = pow2(e1);
+  constexpr double s2 = pow2(E - e1);
+  return (x * s1) * s2;
+}
+template <int E>
 constexpr double scale(double x) noexcept {
-  if constexpr (E >= -1022 && E <= 1023) {
-    constexpr double s = pow2(E);
-    return x * s;
-  } else {
-    // Outside the normal exponent range (ap returns garbage here, section 9): two exact steps,
-    // so the result only rounds (a second time) if it is subnormal.
-    constexpr int e1 = E / 2;
-    constexpr double s1 = pow2(e1);
-    constexpr double s2 = pow2(E - e1);
-    return (x * s1) * s2;
-  }
+  return scale<E>(x, bool_c<(E >= -1022 && E <= 1023)>{});
 }
 
 // Section 9: the integer toward zero of raw * 2^-F, as the low bits of word U (wrapping).
+// F <= 0: the value is an integer; its bits move up by -F.
+template <class U, int F, bool S, class RU, class R>
+constexpr U trunc_toward_zero(R raw, int_c<0> /* F <= 0 */) noexcept {
+  return shift_left<-F>(static_cast<U>(raw));
+}
+template <class U, int F, bool S, class RU, class R>
+constexpr U trunc_toward_zero(R, int_c<1> /* F >= raw word size */) noexcept {
+  return U(0);  // |value| < 1: a negative value floors to -1 and the carry brings it to 0
+}
+template <class U, int F, bool S, class RU, class R>
+constexpr U trunc_toward_zero(R raw, int_c<2> /* 0 < F < raw word size */) noexcept {
+  using RS = sword_t<RU>;
+  const RU bits = static_cast<RU>(raw);
+  if (S) {
+    const RS v = static_cast<RS>(bits);
+    RS q = v >> F;                                         // floor
+    if (v < 0 && (bits & low_mask<RU>(F)) != 0) q += 1;  // C rounds toward zero
+    return static_cast<U>(q);
+  }
+  return static_cast<U>(bits >> F);
+}
 template <class U, int F, bool S, class R>
 constexpr U trunc_toward_zero(R raw) noexcept {
   using RU = word_t<(sizeof(R) > 8 ? 128 : 64)>;
-  using RS = sword_t<RU>;
-  if constexpr (F <= 0) {
-    if constexpr (-F >= word_bits<U>) {
-      return U(0);
-    } else {
-      return static_cast<U>(static_cast<U>(raw) << -F);
-    }
-  } else if constexpr (F >= word_bits<RU>) {
-    return U(0);  // |value| < 1: a negative value floors to -1 and the carry brings it to 0
-  } else {
-    const RU bits = static_cast<RU>(raw);
-    if constexpr (S) {
-      const RS v = static_cast<RS>(bits);
-      RS q = v >> F;                                         // floor
-      if (v < 0 && (bits & low_mask<RU>(F)) != 0) q += 1;  // C rounds toward zero
-      return static_cast<U>(q);
-    } else {
-      return static_cast<U>(bits >> F);
-    }
-  }
+  return trunc_toward_zero<U, F, S, RU>(
+      raw, int_c<(F <= 0 ? 0 : (F >= word_bits<RU>() ? 1 : 2))>{});
 }
 
 // ---- Operand traits: every operand of a binary operator is viewed as <w, i, s> --------------
 // Section 5: C integers are ap_[u]fixed<w, w> with w = 1/8/16/32/64; ap_[u]int<W> is <W, W>.
-template <class T>
+template <class T, class Enable = void>
 struct operand {
-  static constexpr bool valid = false;
+  static constexpr bool valid = false, is_ap = false, is_fixed = false;
 };
 template <int W, int I, bool S, q_mode Q, o_mode O, int N>
 struct operand<fixed_base<W, I, S, Q, O, N>> {
@@ -397,33 +539,40 @@ struct operand<int_base<W, S>> {
   static constexpr int w = W, i = W;
   static constexpr auto raw(const int_base<W, S>& x) noexcept { return x.raw(); }
 };
-template <std::integral T>
-struct operand<T> {
+template <class T>
+struct operand<T, std::enable_if_t<std::is_integral<T>::value>> {
   static constexpr bool valid = true, is_ap = false, is_fixed = false;
-  static constexpr bool s = std::is_signed_v<T>;
-  static constexpr int w = std::is_same_v<T, bool> ? 1 : static_cast<int>(sizeof(T) * 8);
+  static constexpr bool s = std::is_signed<T>::value;
+  static constexpr int w = std::is_same<T, bool>::value ? 1 : static_cast<int>(sizeof(T) * 8);
   static constexpr int i = w;
   static constexpr T raw(T x) noexcept { return x; }
 };
 
+// The constraints of the operators below, as traits (::value).
 template <class T>
-concept ap_type = operand<std::remove_cvref_t<T>>::valid && operand<std::remove_cvref_t<T>>::is_ap;
+struct ap_type
+    : bool_c<operand<remove_cvref_t<T>>::valid && operand<remove_cvref_t<T>>::is_ap> {};
 template <class T>
-concept fixed_type = ap_type<T> && operand<std::remove_cvref_t<T>>::is_fixed;
+struct fixed_type : bool_c<ap_type<T>::value && operand<remove_cvref_t<T>>::is_fixed> {};
 template <class T>
-concept int_type = ap_type<T> && !operand<std::remove_cvref_t<T>>::is_fixed;
+struct int_type : bool_c<ap_type<T>::value && !operand<remove_cvref_t<T>>::is_fixed> {};
 // A binary operator applies when both operands are fixed/int/C-integer and one is ours:
 // a double operand never matches, so "a + 0.5" is ill-formed as with ap (section 5).
 template <class A, class B>
-concept operands = operand<std::remove_cvref_t<A>>::valid &&
-                   operand<std::remove_cvref_t<B>>::valid && (ap_type<A> || ap_type<B>);
+struct operands : bool_c<operand<remove_cvref_t<A>>::valid && operand<remove_cvref_t<B>>::valid &&
+                         (ap_type<A>::value || ap_type<B>::value)> {};
+// The right operand of a compound assignment or a shift.
+template <class T>
+struct shift_operand : bool_c<operand<remove_cvref_t<T>>::valid> {};
+template <class T>
+struct assign_operand : bool_c<operand<remove_cvref_t<T>>::valid> {};
 
 // Section 5: result types. Integer-only expressions give ap_[u]int (section 12), anything with
 // a fixed operand gives ap_[u]fixed with default Q/O.
 template <class A, class B>
 struct rtype {
-  using TA = operand<std::remove_cvref_t<A>>;
-  using TB = operand<std::remove_cvref_t<B>>;
+  using TA = operand<remove_cvref_t<A>>;
+  using TB = operand<remove_cvref_t<B>>;
   static constexpr int w1 = TA::w, i1 = TA::i, f1 = w1 - i1;
   static constexpr int w2 = TB::w, i2 = TB::i, f2 = w2 - i2;
   static constexpr bool s1 = TA::s, s2 = TB::s;
@@ -445,17 +594,13 @@ struct rtype {
 
 template <class T>
 constexpr auto raw_of(const T& x) noexcept {
-  return operand<std::remove_cvref_t<T>>::raw(x);
+  return operand<remove_cvref_t<T>>::raw(x);
 }
 
 // The operand's pattern, sign/zero-extended to word U and moved up by Shift bits.
 template <class U, int Shift, class T>
 constexpr U aligned(const T& x) noexcept {
-  if constexpr (Shift >= word_bits<U>) {
-    return U(0);
-  } else {
-    return static_cast<U>(static_cast<U>(raw_of(x)) << Shift);
-  }
+  return shift_left<Shift>(static_cast<U>(raw_of(x)));
 }
 
 // Results of the operators below are exact in their result type (section 5), so the word
@@ -466,48 +611,68 @@ constexpr R make_exact(U pattern) noexcept {
 }
 
 // Sections 4-6: the binary operators are exact in their widened result type (division
-// truncates toward zero); no quantization or overflow handling happens here.
+// truncates toward zero); no quantization or overflow handling happens here. binary<Op>
+// picks the overload of Op's group (the groups have different result types).
 enum class op { add, sub, mul, div, band, bor, bxor, mod };
+struct additive {};
+struct multiplicative {};
+struct bitwise {};
+struct divisive {};
+template <op Op>
+using op_group = std::conditional_t<
+    Op == op::add || Op == op::sub, additive,
+    std::conditional_t<Op == op::mul, multiplicative,
+                       std::conditional_t<Op == op::band || Op == op::bor || Op == op::bxor,
+                                          bitwise, divisive>>>;
 
 template <op Op, class A, class B>
-constexpr auto binary(const A& a, const B& b) noexcept {
+constexpr auto binary(const A& a, const B& b, additive) noexcept {
   using RT = rtype<A, B>;
-  if constexpr (Op == op::add || Op == op::sub) {
-    using R = std::conditional_t<Op == op::add, typename RT::plus, typename RT::minus>;
-    using U = word_t<R::width>;
-    const U x = aligned<U, RT::fm - RT::f1>(a);
-    const U y = aligned<U, RT::fm - RT::f2>(b);
-    return make_exact<R>(Op == op::add ? U(x + y) : U(x - y));
-  } else if constexpr (Op == op::mul) {
-    using R = typename RT::mult;
-    using U = word_t<R::width>;
-    return make_exact<R>(U(static_cast<U>(raw_of(a)) * static_cast<U>(raw_of(b))));
-  } else if constexpr (Op == op::band || Op == op::bor || Op == op::bxor) {
-    using R = typename RT::logic;
-    using U = word_t<R::width>;
-    const U x = aligned<U, RT::fm - RT::f1>(a);
-    const U y = aligned<U, RT::fm - RT::f2>(b);
-    const U z = Op == op::band ? U(x & y) : (Op == op::bor ? U(x | y) : U(x ^ y));
-    return R::from_raw(static_cast<typename R::raw_type>(extend<R::width, R::is_signed>(z)));
-  } else {
-    // Section 6: (a.V << max(F2, 0)) / b.V, C integer division (toward zero). Computed on
-    // magnitudes, so MIN / -1 LSB gives the mathematically correct value (ap sim wraps).
-    using R = std::conditional_t<Op == op::div, typename RT::div, typename RT::mod>;
-    using U = word_t<imax(imax(RT::w1, RT::w2), R::width) + 1>;
-    constexpr int sh = Op == op::div ? imax(RT::f2, 0) : 0;
-    const wide<U> n = widen<U, RT::s1>(raw_of(a));
-    const wide<U> dv = widen<U, RT::s2>(raw_of(b));
-    const U nm = (n.neg ? U(U(0) - n.bits) : n.bits) << sh;
-    const U dm = dv.neg ? U(U(0) - dv.bits) : dv.bits;
-    if constexpr (Op == op::div) {
-      const U q = nm / dm;
-      return make_exact<R>((n.neg != dv.neg) ? U(U(0) - q) : q);
-    } else {
-      const U rm = nm % dm;
-      return R::from_raw(static_cast<typename R::raw_type>(
-          extend<R::width, R::is_signed>(n.neg ? U(U(0) - rm) : rm)));
-    }
+  using R = std::conditional_t<Op == op::add, typename RT::plus, typename RT::minus>;
+  using U = word_t<R::width>;
+  const U x = aligned<U, RT::fm - RT::f1>(a);
+  const U y = aligned<U, RT::fm - RT::f2>(b);
+  return make_exact<R>(Op == op::add ? U(x + y) : U(x - y));
+}
+template <op Op, class A, class B>
+constexpr auto binary(const A& a, const B& b, multiplicative) noexcept {
+  using R = typename rtype<A, B>::mult;
+  using U = word_t<R::width>;
+  return make_exact<R>(U(static_cast<U>(raw_of(a)) * static_cast<U>(raw_of(b))));
+}
+template <op Op, class A, class B>
+constexpr auto binary(const A& a, const B& b, bitwise) noexcept {
+  using RT = rtype<A, B>;
+  using R = typename RT::logic;
+  using U = word_t<R::width>;
+  const U x = aligned<U, RT::fm - RT::f1>(a);
+  const U y = aligned<U, RT::fm - RT::f2>(b);
+  const U z = Op == op::band ? U(x & y) : (Op == op::bor ? U(x | y) : U(x ^ y));
+  return R::from_raw(static_cast<typename R::raw_type>(extend<R::width, R::is_signed>(z)));
+}
+template <op Op, class A, class B>
+constexpr auto binary(const A& a, const B& b, divisive) noexcept {
+  // Section 6: (a.V << max(F2, 0)) / b.V, C integer division (toward zero). Computed on
+  // magnitudes, so MIN / -1 LSB gives the mathematically correct value (ap sim wraps).
+  using RT = rtype<A, B>;
+  using R = std::conditional_t<Op == op::div, typename RT::div, typename RT::mod>;
+  using U = word_t<imax(imax(RT::w1, RT::w2), R::width) + 1>;
+  constexpr int sh = Op == op::div ? imax(RT::f2, 0) : 0;
+  const wide<U> n = widen<U, RT::s1>(raw_of(a));
+  const wide<U> dv = widen<U, RT::s2>(raw_of(b));
+  const U nm = (n.neg ? U(U(0) - n.bits) : n.bits) << sh;
+  const U dm = dv.neg ? U(U(0) - dv.bits) : dv.bits;
+  if (Op == op::div) {
+    const U q = nm / dm;
+    return make_exact<R>((n.neg != dv.neg) ? U(U(0) - q) : q);
   }
+  const U rm = nm % dm;
+  return R::from_raw(static_cast<typename R::raw_type>(
+      extend<R::width, R::is_signed>(n.neg ? U(U(0) - rm) : rm)));
+}
+template <op Op, class A, class B>
+constexpr auto binary(const A& a, const B& b) noexcept {
+  return binary<Op>(a, b, op_group<Op>{});
 }
 
 // ---- Comparisons (section 8) ----------------------------------------------------------------
@@ -518,7 +683,7 @@ constexpr int cmp_shifted(wide<U> x, int d, wide<U> y) noexcept {
   using SU = sword_t<U>;
   U fx = x.bits;
   bool rem = false;
-  if (d >= word_bits<U>) {
+  if (d >= word_bits<U>()) {
     fx = x.neg ? ~U(0) : U(0);
     rem = x.bits != 0;
   } else if (d > 0) {
@@ -561,7 +726,7 @@ constexpr int compare(const A& a, const B& b) noexcept {
   using U = typename C::U;
   const wide<U> x = widen<U, C::RT::s1>(raw_of(a));
   const wide<U> y = widen<U, C::RT::s2>(raw_of(b));
-  if constexpr (C::rel_unsigned) {
+  if (C::rel_unsigned) {
     // Converted to unsigned, a negative signed operand exceeds every unsigned value.
     if (x.neg) return 1;
     if (y.neg) return -1;
@@ -569,80 +734,109 @@ constexpr int compare(const A& a, const B& b) noexcept {
   return cmp_exact(x, C::RT::f1, y, C::RT::f2);
 }
 
-// (s mod 2^wu) == u on the aligned patterns, for a negative signed s (section 8).
+// (s mod 2^wu) == u on the aligned patterns, for a negative signed s (section 8). The signed
+// pattern moves up by ds (u fixed), or the unsigned one moves up by du (s fixed); the tag
+// says which, and whether the shift leaves the 128-bit word.
+template <int Ds, int Du, int WuAligned>
+constexpr bool modular_equal(i128, u128 u, int_c<0> /* du == 0, ds >= wu */) noexcept {
+  return u == 0;
+}
+template <int Ds, int Du, int WuAligned>
+constexpr bool modular_equal(i128 s, u128 u, int_c<1> /* du == 0, ds < wu */) noexcept {
+  const auto sp = static_cast<u128>(s);
+  constexpr int k = WuAligned - Ds;
+  return (u & low_mask<u128>(Ds)) == 0 && (u >> Ds) == (sp & low_mask<u128>(k));
+}
+template <int Ds, int Du, int WuAligned>
+constexpr bool modular_equal(i128, u128, int_c<2> /* du >= 128 */) noexcept {
+  return false;  // a negative s has a non-zero bit below 2^128
+}
+template <int Ds, int Du, int WuAligned>
+constexpr bool modular_equal(i128 s, u128 u, int_c<3> /* 0 < du < 128 */) noexcept {
+  const auto sp = static_cast<u128>(s);
+  constexpr int k = WuAligned - Du;
+  if ((sp & low_mask<u128>(Du)) != 0) return false;
+  const auto hi = static_cast<u128>(s >> Du);
+  if (k > 128) return false;  // bit 128 of a negative pattern is 1, u has only 128 bits
+  return (hi & low_mask<u128>(k)) == u;
+}
 template <int Ws, int Fs, int Wu, int Fu, int WuAligned>
 constexpr bool modular_equal(i128 s, u128 u) noexcept {
   constexpr int f = imax(Fs, Fu);
   constexpr int ds = f - Fs;  // the signed pattern moves up by ds (u fixed), or
   constexpr int du = f - Fu;  // the unsigned one moves up by du (s fixed)
-  const auto sp = static_cast<u128>(s);
-  if constexpr (du == 0) {
-    if constexpr (ds >= WuAligned) {
-      return u == 0;
-    } else {
-      constexpr int k = WuAligned - ds;
-      return (u & low_mask<u128>(ds)) == 0 && (u >> ds) == (sp & low_mask<u128>(k));
-    }
-  } else {
-    constexpr int k = WuAligned - du;
-    if constexpr (du >= 128) {
-      return false;  // a negative s has a non-zero bit below 2^128
-    } else {
-      if ((sp & low_mask<u128>(du)) != 0) return false;
-      const auto hi = static_cast<u128>(s >> du);
-      if constexpr (k > 128) {
-        return false;  // bit 128 of a negative pattern is 1, u has only 128 bits
-      } else {
-        return (hi & low_mask<u128>(k)) == u;
-      }
-    }
-  }
+  return modular_equal<ds, du, WuAligned>(
+      s, u, int_c<(du == 0 ? (ds >= WuAligned ? 0 : 1) : (du >= 128 ? 2 : 3))>{});
 }
 
+// == on the exact values; == with the modular rule when the signed operand (a for
+// bool_c<true>, b for bool_c<false>) is negative.
 template <class A, class B>
-constexpr bool equal(const A& a, const B& b) noexcept {
+constexpr bool equal_exact(const A& a, const B& b) noexcept {
   using C = cmp_rule<A, B>;
   using RT = typename C::RT;
-  if constexpr (C::eq_modular) {
-    const auto ra = raw_of(a);
-    const auto rb = raw_of(b);
-    if constexpr (RT::s1) {
-      if (static_cast<i128>(ra) < 0) {
-        return modular_equal<RT::w1, RT::f1, RT::w2, RT::f2, C::wu>(static_cast<i128>(ra),
-                                                                    static_cast<u128>(rb));
-      }
-    } else {
-      if (static_cast<i128>(rb) < 0) {
-        return modular_equal<RT::w2, RT::f2, RT::w1, RT::f1, C::wu>(static_cast<i128>(rb),
-                                                                    static_cast<u128>(ra));
-      }
-    }
-  }
   using U = typename C::U;
   return cmp_exact(widen<U, RT::s1>(raw_of(a)), RT::f1, widen<U, RT::s2>(raw_of(b)), RT::f2) ==
          0;
+}
+template <class A, class B>
+constexpr bool equal_modular(const A& a, const B& b,
+                             bool_c<true> /* a is the signed one */) noexcept {
+  using C = cmp_rule<A, B>;
+  using RT = typename C::RT;
+  const auto ra = raw_of(a);
+  const auto rb = raw_of(b);
+  if (static_cast<i128>(ra) < 0) {
+    return modular_equal<RT::w1, RT::f1, RT::w2, RT::f2, C::wu>(static_cast<i128>(ra),
+                                                                static_cast<u128>(rb));
+  }
+  return equal_exact(a, b);
+}
+template <class A, class B>
+constexpr bool equal_modular(const A& a, const B& b,
+                             bool_c<false> /* b is the signed one */) noexcept {
+  using C = cmp_rule<A, B>;
+  using RT = typename C::RT;
+  const auto ra = raw_of(a);
+  const auto rb = raw_of(b);
+  if (static_cast<i128>(rb) < 0) {
+    return modular_equal<RT::w2, RT::f2, RT::w1, RT::f1, C::wu>(static_cast<i128>(rb),
+                                                                static_cast<u128>(ra));
+  }
+  return equal_exact(a, b);
+}
+template <class A, class B>
+constexpr bool equal(const A& a, const B& b, bool_c<false> /* not eq_modular */) noexcept {
+  return equal_exact(a, b);
+}
+template <class A, class B>
+constexpr bool equal(const A& a, const B& b, bool_c<true> /* eq_modular */) noexcept {
+  return equal_modular(a, b, bool_c<rtype<A, B>::s1>{});
+}
+template <class A, class B>
+constexpr bool equal(const A& a, const B& b) noexcept {
+  return equal(a, b, bool_c<cmp_rule<A, B>::eq_modular>{});
 }
 
 // Section 7: shift amounts. Signed C integers and ap_int go through to_int() (low 32 bits,
 // negative reverses the direction), unsigned ones through to_uint(); an ap_fixed amount is
 // truncated toward zero first.
 template <class T>
-constexpr std::int64_t shift_amount(const T& n) noexcept {
-  if constexpr (std::integral<T>) {
-    if constexpr (std::is_signed_v<T>) {
-      return static_cast<std::int32_t>(static_cast<std::uint32_t>(n));
-    } else {
-      return static_cast<std::uint32_t>(n);
-    }
-  } else if constexpr (operand<T>::s) {
-    return n.to_int();
-  } else {
-    return n.to_uint();
-  }
+constexpr std::int64_t shift_amount(const T& n, bool_c<true> /* C integer */) noexcept {
+  if (std::is_signed<T>::value) return static_cast<std::int32_t>(static_cast<std::uint32_t>(n));
+  return static_cast<std::uint32_t>(n);
 }
 template <class T>
-concept shift_operand = operand<std::remove_cvref_t<T>>::valid;
+constexpr std::int64_t shift_amount(const T& n, bool_c<false> /* fixed or int */) noexcept {
+  if (operand<T>::s) return n.to_int();
+  return n.to_uint();
+}
+template <class T>
+constexpr std::int64_t shift_amount(const T& n) noexcept {
+  return shift_amount(n, bool_c<std::is_integral<T>::value>{});
+}
 
+#ifndef __SYNTHESIS__
 // Decimal text of an unsigned 128-bit integer.
 inline std::string u128_to_string(u128 x) {
   char buf[48];
@@ -654,35 +848,121 @@ inline std::string u128_to_string(u128 x) {
   return std::string(buf + pos, buf + 48);
 }
 
+// The shortest decimal text that reads back as d, as std::to_chars(first, last, d) (C++17)
+// writes it: the fewest significant digits that round-trip, the closest such number to d, in
+// fixed or scientific notation, whichever is shorter (fixed on a tie).
+//
+// The correctly rounded p-digit number (printf "%.*e") is the closest one; if it does not read
+// back as d, the only p-digit number that can is its neighbour on the other side of d.
+inline bool reads_back(const std::string& digits, int exp10, double mag) {
+  const std::string text =
+      digits + "e" + std::to_string(exp10 - static_cast<int>(digits.size()) + 1);
+  return std::strtod(text.c_str(), nullptr) == mag;
+}
+// digits * 10^(exp10 - n + 1) one unit in the last place up (up) or down (!up), same length.
+inline void step_last_digit(std::string& digits, int& exp10, bool up) {
+  const std::size_t n = digits.size();
+  if (up) {
+    std::size_t i = n;
+    while (i > 0 && digits[i - 1] == '9') digits[--i] = '0';
+    if (i == 0) {  // 99..9 + 1 = 10..0: one more decade
+      digits = "1" + std::string(n - 1, '0');
+      ++exp10;
+    } else {
+      ++digits[i - 1];
+    }
+  } else if (digits == "1" + std::string(n - 1, '0')) {  // 10..0 - 1 = 99..9 a decade lower
+    digits = std::string(n, '9');
+    --exp10;
+  } else {
+    std::size_t i = n;
+    while (digits[i - 1] == '0') digits[--i] = '9';
+    --digits[i - 1];
+  }
+}
 inline std::string double_to_string(double d) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof(buf), d);
-  return std::string(buf, res.ptr);
+  const std::string sign = std::signbit(d) ? "-" : "";
+  if (std::isnan(d)) return sign + "nan";
+  if (std::isinf(d)) return sign + "inf";
+  if (d == 0) return sign + "0";
+  const double mag = std::fabs(d);
+  // Significant digits d1 d2 ... dn and the exponent: mag ~ d1.d2...dn * 10^exp10.
+  std::string digits;
+  int exp10 = 0;
+  for (int p = 0; p <= 16; ++p) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.*e", p, mag);
+    const std::string text = buf;  // d[.ddd]e+XX
+    const std::size_t e = text.find('e');
+    digits = text.substr(0, 1) + (p > 0 ? text.substr(2, e - 2) : std::string());
+    exp10 = std::atoi(text.c_str() + e + 1);
+    if (reads_back(digits, exp10, mag)) break;
+    const bool below = std::strtod(buf, nullptr) < mag;
+    step_last_digit(digits, exp10, below);
+    if (reads_back(digits, exp10, mag)) break;
+  }
+  while (digits.size() > 1 && digits.back() == '0') digits.pop_back();
+  const int n = static_cast<int>(digits.size());
+  // Scientific: d1[.d2...dn]e+XX (at least two exponent digits).
+  const int ax = exp10 < 0 ? -exp10 : exp10;
+  const std::string sci = digits.substr(0, 1) + (n > 1 ? "." + digits.substr(1) : "") + "e" +
+                          (exp10 < 0 ? "-" : "+") + (ax < 10 ? "0" : "") + std::to_string(ax);
+  // Fixed: the digits with the point placed. An integer is printed exactly (all its digits
+  // rather than the shortest ones padded with zeros: as long, and closer to d).
+  std::string fix;
+  if (exp10 < 0) {
+    fix = "0." + std::string(static_cast<std::size_t>(-exp10 - 1), '0') + digits;
+  } else if (n <= exp10 + 1) {
+    char ibuf[320];  // the largest double has 309 digits
+    std::snprintf(ibuf, sizeof ibuf, "%.0f", mag);
+    fix = ibuf;
+  } else {
+    fix = digits.substr(0, static_cast<std::size_t>(exp10 + 1)) + "." +
+          digits.substr(static_cast<std::size_t>(exp10 + 1));
+  }
+  return sign + (sci.size() < fix.size() ? sci : fix);
 }
 
 // Exact decimal text of raw * 2^-F when it fits the 128-bit arithmetic, else the double.
+// The tag is the case of F: an integer beyond 128 bits, an integer, a fraction, too fine.
+template <int F>
+std::string fixed_to_string(const std::string& sign, u128 mag, double approx,
+                            int_c<0> /* F <= -128 */) {
+  if (mag != 0) return double_to_string(approx);
+  return sign + u128_to_string(mag);
+}
+template <int F>
+std::string fixed_to_string(const std::string& sign, u128 mag, double approx,
+                            int_c<1> /* -128 < F <= 0 */) {
+  if (mag != 0 && (mag >> (127 + F)) != 0) return double_to_string(approx);
+  return sign + u128_to_string(mag << -F);
+}
+template <int F>
+std::string fixed_to_string(const std::string& sign, u128 mag, double,
+                            int_c<2> /* 0 < F <= 124 */) {
+  std::string s = sign + u128_to_string(mag >> F);
+  u128 frac = mag & low_mask<u128>(F);
+  if (frac != 0) s += '.';
+  while (frac != 0) {
+    frac *= 10;
+    s += static_cast<char>('0' + static_cast<int>(frac >> F));
+    frac &= low_mask<u128>(F);
+  }
+  return s;
+}
+template <int F>
+std::string fixed_to_string(const std::string&, u128, double approx, int_c<3> /* F > 124 */) {
+  return double_to_string(approx);
+}
 template <int F, bool S, class R>
 std::string fixed_to_string(R raw, double approx) {
   const wide<u128> v = widen<u128, S>(raw);
   const u128 mag = v.neg ? u128(0) - v.bits : v.bits;
-  std::string sign = v.neg ? "-" : "";
-  if constexpr (F <= 0) {
-    if (mag != 0 && (-F >= 128 || (mag >> (127 + F)) != 0)) return double_to_string(approx);
-    return sign + u128_to_string(mag << -F);
-  } else if constexpr (F > 124) {
-    return double_to_string(approx);
-  } else {
-    std::string s = sign + u128_to_string(mag >> F);
-    u128 frac = mag & low_mask<u128>(F);
-    if (frac != 0) s += '.';
-    while (frac != 0) {
-      frac *= 10;
-      s += static_cast<char>('0' + static_cast<int>(frac >> F));
-      frac &= low_mask<u128>(F);
-    }
-    return s;
-  }
+  const std::string sign = v.neg ? "-" : "";
+  return fixed_to_string<F>(sign, mag, approx,
+                            int_c<(F <= -128 ? 0 : (F <= 0 ? 1 : (F <= 124 ? 2 : 3)))>{});
 }
+#endif  // __SYNTHESIS__
 
 // Proxies for x[i] and x.range(hi, lo) (section 10): raw bit access, no Q/O on writes.
 template <class Owner>
@@ -690,7 +970,7 @@ class bit_ref {
  public:
   constexpr bit_ref(Owner* owner, int index) noexcept : owner_(owner), index_(index) {}
   constexpr bit_ref(const bit_ref&) noexcept = default;
-  constexpr operator bool() const noexcept { return std::as_const(*owner_)[index_]; }
+  constexpr operator bool() const noexcept { return static_cast<const Owner&>(*owner_)[index_]; }
   constexpr bool to_bool() const noexcept { return static_cast<bool>(*this); }
   constexpr bit_ref& operator=(bool b) noexcept {
     owner_->set_bit(index_, b);
@@ -705,11 +985,12 @@ class bit_ref {
   int index_;
 };
 
+// The reads of x.range(hi, lo), shared by range_ref<T> and the read-only range_ref<const T>.
 template <class Owner>
-class range_ref {
+class range_reader {
  public:
-  constexpr range_ref(Owner* owner, int hi, int lo) noexcept : owner_(owner), hi_(hi), lo_(lo) {}
-  constexpr range_ref(const range_ref&) noexcept = default;
+  constexpr range_reader(Owner* owner, int hi, int lo) noexcept
+      : owner_(owner), hi_(hi), lo_(lo) {}
 
   // Read as an unsigned integer of length() bits (hi < lo reads the bits reversed).
   constexpr u128 raw_bits() const noexcept { return owner_->get_range(hi_, lo_); }
@@ -724,38 +1005,48 @@ class range_ref {
   constexpr int length() const noexcept { return (hi_ >= lo_ ? hi_ - lo_ : lo_ - hi_) + 1; }
   constexpr bool operator==(std::uint64_t v) const noexcept { return raw_bits() == v; }
 
-  // Writes the low length() bits of v (raw, no quantization or overflow handling).
-  constexpr range_ref& operator=(std::uint64_t v) noexcept
-    requires(!std::is_const_v<Owner>)
-  {
-    owner_->set_range(hi_, lo_, u128(v));
-    return *this;
-  }
-  template <int W2, bool S2>
-  constexpr range_ref& operator=(const int_base<W2, S2>& v) noexcept
-    requires(!std::is_const_v<Owner>)
-  {
-    owner_->set_range(hi_, lo_, static_cast<u128>(v.raw()));
-    return *this;
-  }
-  template <class O2>
-  constexpr range_ref& operator=(const range_ref<O2>& v) noexcept
-    requires(!std::is_const_v<Owner>)
-  {
-    owner_->set_range(hi_, lo_, v.raw_bits());
-    return *this;
-  }
-  constexpr range_ref& operator=(const range_ref& v) noexcept
-    requires(!std::is_const_v<Owner>)
-  {
-    owner_->set_range(hi_, lo_, v.raw_bits());
-    return *this;
-  }
-
- private:
+ protected:
   Owner* owner_;
   int hi_;
   int lo_;
+};
+
+template <class Owner>
+class range_ref : public range_reader<Owner> {
+ public:
+  constexpr range_ref(Owner* owner, int hi, int lo) noexcept
+      : range_reader<Owner>(owner, hi, lo) {}
+  constexpr range_ref(const range_ref&) noexcept = default;
+
+  // Writes the low length() bits of v (raw, no quantization or overflow handling).
+  constexpr range_ref& operator=(std::uint64_t v) noexcept {
+    this->owner_->set_range(this->hi_, this->lo_, u128(v));
+    return *this;
+  }
+  template <int W2, bool S2>
+  constexpr range_ref& operator=(const int_base<W2, S2>& v) noexcept {
+    this->owner_->set_range(this->hi_, this->lo_, static_cast<u128>(v.raw()));
+    return *this;
+  }
+  template <class O2>
+  constexpr range_ref& operator=(const range_ref<O2>& v) noexcept {
+    this->owner_->set_range(this->hi_, this->lo_, v.raw_bits());
+    return *this;
+  }
+  constexpr range_ref& operator=(const range_ref& v) noexcept {
+    this->owner_->set_range(this->hi_, this->lo_, v.raw_bits());
+    return *this;
+  }
+};
+
+// x.range(hi, lo) of a const x: read only, no assignment at all.
+template <class Owner>
+class range_ref<const Owner> : public range_reader<const Owner> {
+ public:
+  constexpr range_ref(const Owner* owner, int hi, int lo) noexcept
+      : range_reader<const Owner>(owner, hi, lo) {}
+  constexpr range_ref(const range_ref&) noexcept = default;
+  range_ref& operator=(const range_ref&) = delete;
 };
 
 // Shared raw-bit helpers of fixed_base and int_base (W-bit canonical storage in word U).
@@ -821,7 +1112,7 @@ class fixed_base {
   template <int W2, bool S2>
   constexpr fixed_base(const int_base<W2, S2>& x) noexcept : v_(convert<0, S2, W2>(x.raw())) {}
 
-  template <std::integral T>
+  template <class T, detail::enable_if_c<std::is_integral<T>::value> = 0>
   constexpr fixed_base(T x) noexcept
       : v_(convert<0, detail::operand<T>::s, detail::operand<T>::w>(x)) {}
 
@@ -873,30 +1164,17 @@ class fixed_base {
 
   // Explicit only: ap converts implicitly, which is what makes "a + 0.5" ambiguous there; here
   // the conversions are explicit so that "a + 0.5" is equally ill-formed.
-  template <class T>
-    requires std::is_arithmetic_v<T>
+  template <class T, detail::enable_if_c<std::is_arithmetic<T>::value> = 0>
   constexpr explicit operator T() const noexcept {
-    if constexpr (std::is_same_v<T, bool>) {
-      return v_ != 0;
-    } else if constexpr (std::is_same_v<T, float>) {
-      return to_float();
-    } else if constexpr (std::is_floating_point_v<T>) {
-      return static_cast<T>(to_double());
-    } else if constexpr (std::is_signed_v<T>) {
-      return static_cast<T>(to_int64());
-    } else {
-      return static_cast<T>(to_uint64());
-    }
+    if (std::is_same<T, bool>::value) return static_cast<T>(v_ != 0);
+    if (std::is_same<T, float>::value) return static_cast<T>(to_float());
+    if (std::is_floating_point<T>::value) return static_cast<T>(to_double());
+    if (std::is_signed<T>::value) return static_cast<T>(to_int64());
+    return static_cast<T>(to_uint64());
   }
 
   // ---- Queries ---------------------------------------------------------------------------
-  constexpr bool is_neg() const noexcept {
-    if constexpr (S) {
-      return v_ < 0;
-    } else {
-      return false;
-    }
-  }
+  constexpr bool is_neg() const noexcept { return detail::negative(v_, detail::bool_c<S>{}); }
   constexpr bool is_zero() const noexcept { return v_ == 0; }
   constexpr bool operator!() const noexcept { return v_ == 0; }
   constexpr int wl() const noexcept { return W; }
@@ -905,14 +1183,7 @@ class fixed_base {
   constexpr int n_bits() const noexcept { return N; }
   constexpr int countLeadingZeros() const noexcept {
     const word u = static_cast<word>(v_) & detail::low_mask<word>(W);
-    if constexpr (W <= 64) {
-      return std::countl_zero(static_cast<std::uint64_t>(u)) - (64 - W);
-    } else {
-      const auto hi = static_cast<std::uint64_t>(u >> 64);
-      const auto lo = static_cast<std::uint64_t>(u);
-      const int z = hi != 0 ? std::countl_zero(hi) : 64 + std::countl_zero(lo);
-      return z - (128 - W);
-    }
+    return detail::count_leading_zeros(u) - (detail::word_bits<word>() - W);
   }
 
   // ---- Bit and range access (section 10): raw bits, no Q/O --------------------------------
@@ -964,88 +1235,74 @@ class fixed_base {
   }
 
   // Section 11: ++/-- add 1.0 (not one LSB) through +=, so they quantize and handle overflow
-  // with this type's modes; ill-formed for I > W, as in ap.
-  constexpr fixed_base& operator++() noexcept
-    requires(I <= W)
-  {
+  // with this type's modes; ill-formed for I > W, as in ap (templates only so that the
+  // condition can remove them: I2 is always I).
+  template <int I2 = I, detail::enable_if_c<(I2 <= W)> = 0>
+  constexpr fixed_base& operator++() noexcept {
     return *this += fixed_base<W - I + 1, 1, false>(1);
   }
-  constexpr fixed_base& operator--() noexcept
-    requires(I <= W)
-  {
+  template <int I2 = I, detail::enable_if_c<(I2 <= W)> = 0>
+  constexpr fixed_base& operator--() noexcept {
     return *this -= fixed_base<W - I + 1, 1, false>(1);
   }
-  constexpr fixed_base operator++(int) noexcept
-    requires(I <= W)
-  {
+  template <int I2 = I, detail::enable_if_c<(I2 <= W)> = 0>
+  constexpr fixed_base operator++(int) noexcept {
     const fixed_base r = *this;
     ++*this;
     return r;
   }
-  constexpr fixed_base operator--(int) noexcept
-    requires(I <= W)
-  {
+  template <int I2 = I, detail::enable_if_c<(I2 <= W)> = 0>
+  constexpr fixed_base operator--(int) noexcept {
     const fixed_base r = *this;
     --*this;
     return r;
   }
 
   // ---- Compound assignment (section 4): full-precision result, then ONE conversion -------
-  template <class B>
-    requires detail::operand<std::remove_cvref_t<B>>::valid
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value> = 0>
   constexpr fixed_base& operator+=(const B& b) noexcept {
     return *this = detail::binary<detail::op::add>(*this, b);
   }
-  template <class B>
-    requires detail::operand<std::remove_cvref_t<B>>::valid
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value> = 0>
   constexpr fixed_base& operator-=(const B& b) noexcept {
     return *this = detail::binary<detail::op::sub>(*this, b);
   }
-  template <class B>
-    requires detail::operand<std::remove_cvref_t<B>>::valid
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value> = 0>
   constexpr fixed_base& operator*=(const B& b) noexcept {
     return *this = detail::binary<detail::op::mul>(*this, b);
   }
-  template <class B>
-    requires detail::operand<std::remove_cvref_t<B>>::valid
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value> = 0>
   constexpr fixed_base& operator/=(const B& b) noexcept {
     return *this = detail::binary<detail::op::div>(*this, b);
   }
-  template <class B>
-    requires detail::operand<std::remove_cvref_t<B>>::valid
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value> = 0>
   constexpr fixed_base& operator&=(const B& b) noexcept {
     return *this = detail::binary<detail::op::band>(*this, b);
   }
-  template <class B>
-    requires detail::operand<std::remove_cvref_t<B>>::valid
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value> = 0>
   constexpr fixed_base& operator|=(const B& b) noexcept {
     return *this = detail::binary<detail::op::bor>(*this, b);
   }
-  template <class B>
-    requires detail::operand<std::remove_cvref_t<B>>::valid
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value> = 0>
   constexpr fixed_base& operator^=(const B& b) noexcept {
     return *this = detail::binary<detail::op::bxor>(*this, b);
   }
 
   // ---- Shifts (section 7): same type including Q/O, raw pattern, no quantization or
   // overflow handling; negative signed amounts reverse; amounts >= W give 0 / sign fill.
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr fixed_base operator<<(const T& n) const noexcept {
     return shl(detail::shift_amount(n));
   }
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr fixed_base operator>>(const T& n) const noexcept {
     return shr(detail::shift_amount(n));
   }
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr fixed_base& operator<<=(const T& n) noexcept {
     return *this = shl(detail::shift_amount(n));
   }
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr fixed_base& operator>>=(const T& n) noexcept {
     return *this = shr(detail::shift_amount(n));
   }
@@ -1059,12 +1316,15 @@ class fixed_base {
     return fixed_base<W, I - K, S>::from_raw(v_);
   }
 
-  // ---- Printing: exact decimal (ap's to_string() defaults to radix 2; use to_string(10)
-  // in code that must compile with both). Radix 2 and 16 print the raw W-bit pattern.
+#ifndef __SYNTHESIS__
+  // ---- Printing (host only): exact decimal (ap's to_string() defaults to radix 2; use
+  // to_string(10) in code that must compile with both). Radix 2 and 16 print the raw W-bit
+  // pattern.
   std::string to_string(int radix = 10) const {
     if (radix == 2 || radix == 16) return raw_pattern_string(radix);
     return detail::fixed_to_string<W - I, S>(v_, to_double());
   }
+#endif
 
  private:
   template <int Fs, bool Ss, int Ws, class R>
@@ -1096,6 +1356,7 @@ class fixed_base {
     if (n >= W) return from_raw(is_neg() ? static_cast<raw_type>(~word(0)) : raw_type(0));
     return from_raw(static_cast<raw_type>(v_ >> n));
   }
+#ifndef __SYNTHESIS__
   std::string raw_pattern_string(int radix) const {
     const int step = radix == 2 ? 1 : 4;
     const word u = static_cast<word>(v_) & detail::low_mask<word>(W);
@@ -1105,6 +1366,7 @@ class fixed_base {
     }
     return s;
   }
+#endif
 
   raw_type v_ = 0;
 };
@@ -1131,7 +1393,7 @@ class int_base {
   constexpr int_base() noexcept = default;
   template <int W2, bool S2>
   constexpr int_base(const int_base<W2, S2>& x) noexcept : v_(store(x.raw())) {}
-  template <std::integral T>
+  template <class T, detail::enable_if_c<std::is_integral<T>::value> = 0>
   constexpr int_base(T x) noexcept : v_(store(x)) {}
   // Conversions from fixed and double truncate toward zero, then wrap (section 9).
   template <int W2, int I2, bool S2, q_mode Q2, o_mode O2, int N2>
@@ -1166,25 +1428,14 @@ class int_base {
   }
   constexpr char to_char() const noexcept { return static_cast<char>(to_int()); }
   constexpr bool to_bool() const noexcept { return v_ != 0; }
-  template <class T>
-    requires std::is_arithmetic_v<T>
+  template <class T, detail::enable_if_c<std::is_arithmetic<T>::value> = 0>
   constexpr explicit operator T() const noexcept {
-    if constexpr (std::is_same_v<T, bool>) {
-      return v_ != 0;
-    } else if constexpr (std::is_floating_point_v<T>) {
-      return static_cast<T>(v_);
-    } else {
-      return static_cast<T>(to_uint64());
-    }
+    if (std::is_same<T, bool>::value) return static_cast<T>(v_ != 0);
+    if (std::is_floating_point<T>::value) return static_cast<T>(v_);
+    return static_cast<T>(to_uint64());
   }
 
-  constexpr bool is_neg() const noexcept {
-    if constexpr (S) {
-      return v_ < 0;
-    } else {
-      return false;
-    }
-  }
+  constexpr bool is_neg() const noexcept { return detail::negative(v_, detail::bool_c<S>{}); }
   constexpr bool is_zero() const noexcept { return v_ == 0; }
   constexpr bool operator!() const noexcept { return v_ == 0; }
   constexpr int length() const noexcept { return W; }
@@ -1241,72 +1492,71 @@ class int_base {
   }
 
   // Compound assignment with integer operands: full-width result, then wrap.
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator+=(const B& b) noexcept {
     return *this = detail::binary<detail::op::add>(*this, b);
   }
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator-=(const B& b) noexcept {
     return *this = detail::binary<detail::op::sub>(*this, b);
   }
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator*=(const B& b) noexcept {
     return *this = detail::binary<detail::op::mul>(*this, b);
   }
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator/=(const B& b) noexcept {
     return *this = detail::binary<detail::op::div>(*this, b);
   }
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator%=(const B& b) noexcept {
     return *this = detail::binary<detail::op::mod>(*this, b);
   }
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator&=(const B& b) noexcept {
     return *this = detail::binary<detail::op::band>(*this, b);
   }
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator|=(const B& b) noexcept {
     return *this = detail::binary<detail::op::bor>(*this, b);
   }
-  template <class B>
-    requires(detail::operand<std::remove_cvref_t<B>>::valid && !detail::fixed_type<B>)
+  template <class B, detail::enable_if_c<detail::assign_operand<B>::value &&
+                                         !detail::fixed_type<B>::value> = 0>
   constexpr int_base& operator^=(const B& b) noexcept {
     return *this = detail::binary<detail::op::bxor>(*this, b);
   }
 
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr int_base operator<<(const T& n) const noexcept {
     return shl(detail::shift_amount(n));
   }
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr int_base operator>>(const T& n) const noexcept {
     return shr(detail::shift_amount(n));
   }
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr int_base& operator<<=(const T& n) noexcept {
     return *this = shl(detail::shift_amount(n));
   }
-  template <class T>
-    requires detail::shift_operand<T>
+  template <class T, detail::enable_if_c<detail::shift_operand<T>::value> = 0>
   constexpr int_base& operator>>=(const T& n) noexcept {
     return *this = shr(detail::shift_amount(n));
   }
 
+#ifndef __SYNTHESIS__
+  // Printing (host only), as fixed_base::to_string.
   std::string to_string(int radix = 10) const {
     if (radix == 2 || radix == 16) return fixed_base<W, W, S>::from_raw(v_).to_string(radix);
     return detail::fixed_to_string<0, S>(v_, to_double());
   }
+#endif
 
  private:
   template <class T>
@@ -1343,131 +1593,120 @@ class int_base {
 // =============================================================================================
 // Binary operators (sections 5, 6, 12): exact in the widened result type.
 // =============================================================================================
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr auto operator+(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::add>(a, b);
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr auto operator-(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::sub>(a, b);
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr auto operator*(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::mul>(a, b);
 }
 // Division by zero is undefined (ap and ac simulation crash with SIGFPE).
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr auto operator/(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::div>(a, b);
 }
-template <class A, class B>
-  requires(detail::operands<A, B> && !detail::fixed_type<A> && !detail::fixed_type<B>)
+template <class A, class B,
+          detail::enable_if_c<detail::operands<A, B>::value && !detail::fixed_type<A>::value &&
+                              !detail::fixed_type<B>::value> = 0>
 constexpr auto operator%(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::mod>(a, b);
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr auto operator&(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::band>(a, b);
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr auto operator|(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::bor>(a, b);
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr auto operator^(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::bxor>(a, b);
 }
 
 // ---- Comparisons (section 8): exact for equal signedness; mixed signedness follows ap's
 // C-conversion rules. Comparisons with double go through to_double().
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator==(const A& a, const B& b) noexcept {
   return detail::equal(a, b);
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator!=(const A& a, const B& b) noexcept {
   return !detail::equal(a, b);
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator<(const A& a, const B& b) noexcept {
   return detail::compare(a, b) < 0;
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator<=(const A& a, const B& b) noexcept {
   return detail::compare(a, b) <= 0;
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator>(const A& a, const B& b) noexcept {
   return detail::compare(a, b) > 0;
 }
-template <class A, class B>
-  requires detail::operands<A, B>
+template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator>=(const A& a, const B& b) noexcept {
   return detail::compare(a, b) >= 0;
 }
 
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator==(const A& a, double d) noexcept {
   return a.to_double() == d;
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator!=(const A& a, double d) noexcept {
   return a.to_double() != d;
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator<(const A& a, double d) noexcept {
   return a.to_double() < d;
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator<=(const A& a, double d) noexcept {
   return a.to_double() <= d;
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator>(const A& a, double d) noexcept {
   return a.to_double() > d;
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator>=(const A& a, double d) noexcept {
   return a.to_double() >= d;
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator==(double d, const A& a) noexcept {
   return d == a.to_double();
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator!=(double d, const A& a) noexcept {
   return d != a.to_double();
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator<(double d, const A& a) noexcept {
   return d < a.to_double();
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator<=(double d, const A& a) noexcept {
   return d <= a.to_double();
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator>(double d, const A& a) noexcept {
   return d > a.to_double();
 }
-template <detail::ap_type A>
+template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>
 constexpr bool operator>=(double d, const A& a) noexcept {
   return d >= a.to_double();
 }
 
-// ---- Printing: exact decimal value.
+#ifndef __SYNTHESIS__
+// ---- Printing (host only): exact decimal value.
 template <int W, int I, bool S, q_mode Q, o_mode O, int N>
 std::ostream& operator<<(std::ostream& os, const fixed_base<W, I, S, Q, O, N>& x) {
   return os << x.to_string();
@@ -1476,5 +1715,29 @@ template <int W, bool S>
 std::ostream& operator<<(std::ostream& os, const int_base<W, S>& x) {
   return os << x.to_string();
 }
+#endif
 
-}  // namespace voxcast::hls
+#if __cplusplus < 201703L
+// Before C++17 a static constexpr data member that is odr-used (bound to a reference, as by
+// std::min or a test macro) needs a definition at namespace scope; from C++17 on the members
+// are inline and these would be redundant (deprecated).
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+constexpr int fixed_base<W, I, S, Q, O, N>::width;
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+constexpr int fixed_base<W, I, S, Q, O, N>::iwidth;
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+constexpr q_mode fixed_base<W, I, S, Q, O, N>::qmode;
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+constexpr o_mode fixed_base<W, I, S, Q, O, N>::omode;
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+constexpr int fixed_base<W, I, S, Q, O, N>::nbits;
+template <int W, int I, bool S, q_mode Q, o_mode O, int N>
+constexpr bool fixed_base<W, I, S, Q, O, N>::is_signed;
+template <int W, bool S>
+constexpr int int_base<W, S>::width;
+template <int W, bool S>
+constexpr bool int_base<W, S>::is_signed;
+#endif
+
+}  // namespace hls
+}  // namespace voxcast

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
@@ -548,6 +549,56 @@ TEST(FixedArith, Printing) {
   std::ostringstream os;
   os << fixed<8, 4>(1.5) << " " << int_t<8>(-3);
   EXPECT_EQ(os.str(), "1.5 -3");
+}
+
+// A value beyond the 128-bit decimal arithmetic prints as its double, in the shortest text
+// that reads back (std::to_chars; the C++14 header writes it with snprintf / strtod).
+std::string to_chars_text(double d) {
+  char buf[400];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), d);
+  return std::string(buf, res.ptr);
+}
+TEST(FixedArith, PrintingBeyond128BitsIsTheShortestDouble) {
+  std::mt19937_64 rng(20240601);
+  std::uint64_t mismatches = 0;
+  const auto expect_text = [&](const std::string& got, double d) {
+    if (got != to_chars_text(d) && ++mismatches <= 10) {
+      ADD_FAILURE() << std::hexfloat << d << ": " << got << " != " << to_chars_text(d);
+    }
+  };
+  for (int k = 0; k < 2000; ++k) {
+    const auto r = static_cast<std::int64_t>(rng() >> (rng() % 64));
+    const auto fine = fixed<64, -100>::from_raw(r);     // F = 164 > 124: the double
+    const auto huge = fixed<64, 300>::from_raw(~r);     // integers beyond 2^128
+    const auto tiny = ufixed<20, -1060>::from_raw(static_cast<std::uint64_t>(r));  // subnormal
+    expect_text(fine.to_string(), fine.to_double());
+    expect_text(huge.to_string(), huge.to_double());
+    expect_text(tiny.to_string(), tiny.to_double());
+  }
+  EXPECT_EQ((fixed<64, 1100>::from_raw(1LL << 62).to_string()), "inf");
+  EXPECT_EQ((fixed<8, 300>::from_raw(0).to_string()), "0");
+  EXPECT_EQ((fixed<8, -200>::from_raw(-1).to_string()), "-2.4308653429145085e-63");
+  EXPECT_EQ((fixed<8, 200>::from_raw(1).to_string()), "6.277101735386681e+57");
+  EXPECT_EQ((fixed<8, 120>::from_raw(3).to_string()), "15576890575604482885591488987660288");
+  // Every bit pattern class of a double (the helper itself).
+  for (int k = 0; k < 20000; ++k) {
+    const double d = std::bit_cast<double>(rng());
+    expect_text(detail::double_to_string(d), d);
+  }
+  for (int e = -1074; e <= 1023; ++e) {
+    const double p = std::ldexp(1.0, e);
+    for (const double d : {p, -p, std::nextafter(p, 0.0), std::nextafter(p, INFINITY), 3 * p}) {
+      expect_text(detail::double_to_string(d), d);
+    }
+  }
+  for (int e = -320; e <= 300; ++e) {
+    for (int m = 1; m < 10; ++m) {
+      const double d = m * std::pow(10.0, e);
+      expect_text(detail::double_to_string(d), d);
+      expect_text(detail::double_to_string(std::nextafter(d, 0.0)), std::nextafter(d, 0.0));
+    }
+  }
+  EXPECT_EQ(mismatches, 0u);
 }
 
 // ---- Exhaustive small formats: all pairs of raw patterns ----------------------------------
