@@ -2,9 +2,9 @@
 //
 // The ctest cases fixed_point_cxx14_* (tests/CMakeLists.txt) compile this file with g++ and
 // clang++ as -std=c++14 -Wall -Wextra -Werror -pedantic -fno-exceptions -fno-rtti, with and
-// without -D__SYNTHESIS__, and link it as a shared object with -z defs at -O0, so that any C++17/20
-// construct in the header, and any odr-used static constexpr member without a C++14
-// definition, fails the test. It therefore instantiates the whole API: every alias, every
+// without -D__SYNTHESIS__, and link the host build as a shared object with -z defs at -O0, so
+// that any C++17/20 construct in the header, and any odr-used static constexpr member without a
+// C++14 definition, fails the test. It therefore instantiates the whole API: every alias, every
 // quantization and overflow mode (N = 0, 1, > 1), conversions in all directions and with
 // compile-time shifts of each sign, the operators with every operand kind, comparisons
 // (including the modular == of mixed signedness), shifts, bit and range access, the queries and
@@ -12,15 +12,19 @@
 //
 // As a file of tests/hls it is also part of voxcast_tests_hls, i.e. compiled as C++20 with the
 // project's warnings: the same code must mean the same in both.
+
+// The header first: it must compile on its own.
+// clang-format off
+#include "hls/fixed_point.hpp"
+
 #include <cstdint>
 #include <type_traits>
 #include <utility>
-
-#include "hls/fixed_point.hpp"
 #ifndef __SYNTHESIS__
 #include <sstream>
 #include <string>
 #endif
+// clang-format on
 
 namespace fixed_point_cxx14_check {
 
