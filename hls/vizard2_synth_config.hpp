@@ -1,12 +1,13 @@
 // The profile and units of the synthesized VIZARD II top (TopProfile,
-// TopUnits) and the types of its ports, shared by the top
+// TopUnits), the types of its ports and its declaration, shared by the top
 // (hls/vizard2_synth_top.cpp) and its C simulation testbench
-// (hls/tb/vizard2_frame_tb.cpp): from the scene's elaborated_config.hpp
-// (`voxcast synth-script`, passed with -include), else the full design
-// (AllUnits) for -DVOXCAST_SYNTH_PROFILE=Vizard2Traits | BalancedTraits |
-// PreciseTraits. C++14.
+// (hls/tb/vizard2_frame_tb.cpp). Profile and units come from the scene's
+// elaborated_config.hpp (`voxcast synth-script`, passed with -include), else
+// the full design (AllUnits) for -DVOXCAST_SYNTH_PROFILE=Vizard2Traits |
+// BalancedTraits | PreciseTraits. C++14.
 #pragma once
 
+#include <cstdint>
 #include <type_traits>
 
 #include "hls/interpolation_processor.hpp"
@@ -45,3 +46,11 @@ using Pixel = hls::OutputPixel<TopProfile>;
 }  // namespace hls
 }  // namespace voxcast
 
+// The top (hls/vizard2_synth_top.cpp; the testbench calls it): the frame state
+// and the 8 voxel banks in, the frame buffer and the sample count out.
+void vizard2_frame_top(const voxcast::hls::top::Frame* frame, const voxcast::hls::top::Word* bank0,
+                       const voxcast::hls::top::Word* bank1, const voxcast::hls::top::Word* bank2,
+                       const voxcast::hls::top::Word* bank3, const voxcast::hls::top::Word* bank4,
+                       const voxcast::hls::top::Word* bank5, const voxcast::hls::top::Word* bank6,
+                       const voxcast::hls::top::Word* bank7, int width, int height,
+                       voxcast::hls::top::Pixel* fb, std::uint64_t* samples);

@@ -28,12 +28,6 @@ using voxcast::hls::top::Pixel;
 using voxcast::hls::top::TopUnits;
 using voxcast::hls::top::Word;
 
-// The top under test (hls/vizard2_synth_top.cpp).
-void vizard2_frame_top(const Frame* frame, const Word* bank0, const Word* bank1,
-                       const Word* bank2, const Word* bank3, const Word* bank4, const Word* bank5,
-                       const Word* bank6, const Word* bank7, int width, int height, Pixel* fb,
-                       std::uint64_t* samples);
-
 namespace {
 
 // The data file: little-endian 64-bit words (cosim/synth_script.cpp writes it).

@@ -141,6 +141,8 @@ TEST(ElaboratedTop, SynthScriptWritesTheElaboratedUnits) {
     ref::Overrides sets = c.sets;
     sets.push_back(kPhantom);
     sets.push_back("precision.profile=balanced");
+    sets.push_back("render.width=32");  // the csim data renders the frame: keep it small
+    sets.push_back("render.height=24");
     SCOPED_TRACE(sets.front() + " " + sets[1]);
     const ref::Scene scene = ref::default_scene(sets);
     const auto paths =

@@ -134,13 +134,31 @@ TEST_F(SynthScript, VitisScriptRunsAndNamesTheRealDesign) {
   for (const std::string board_name : {"vizard2_pci", "alveo_u250"}) {
     for (const std::string profile : {"vizard2", "balanced", "precise"}) {
       SCOPED_TRACE(board_name + " " + profile);
-      const auto scene = ref::default_scene(
-          {"precision.profile=" + profile, "volume.source=phantom:shepp-logan?size=128"});
+      // A small image: the csim data holds the frame the hls engine renders.
+      const auto scene = ref::default_scene({"precision.profile=" + profile,
+                                             "volume.source=phantom:shepp-logan?size=128",
+                                             "render.width=32", "render.height=24"});
       const auto board = rtl::board::shipped_board(board_name);
       const auto paths = cosim::write_synth_scripts(scene, "scenes/default.toml", board, "vitis",
                                                     dir.string(), root);
       ASSERT_EQ(paths.size(), 3u);  // elaborated_config.hpp, the script, the csim data
       EXPECT_EQ(fs::path(paths[2]).filename(), cosim::kCsimDataFile);
+      {  // tag, voxel-word chunks, width, height (hls/tb/vizard2_frame_tb.cpp reads them)
+        const std::string data = read(paths[2]);
+        ASSERT_GE(data.size(), 32u);
+        ASSERT_EQ(data.size() % 8, 0u);
+        auto word = [&data](std::size_t i) {
+          std::uint64_t w = 0;
+          for (int b = 7; b >= 0; --b)
+            w = (w << 8) | static_cast<unsigned char>(data[i * 8 + static_cast<std::size_t>(b)]);
+          return w;
+        };
+        EXPECT_EQ(data.substr(0, 8), "VXFRAME1");
+        EXPECT_EQ(word(0), cosim::kCsimDataTag);
+        EXPECT_EQ(word(1), profile == "precise" ? 2u : 1u);  // 76-bit words need two chunks
+        EXPECT_EQ(word(2), 32u);
+        EXPECT_EQ(word(3), 24u);
+      }
       const auto calls = run_with_stubs(paths[1]);
       ASSERT_FALSE(calls.empty());
       EXPECT_EQ(calls.back(), "exit");
