@@ -45,10 +45,11 @@ std::string synth_cflags(const SynthTop& top, const std::string& source_root,
 // The units of the top for an elaboration (ref::Elaboration's flags, one to one).
 hls::Units elaborated_units(const ref::Elaboration& e);
 
-// elaborated_config.hpp for the scene: the profile (Profile, one of the
-// compiled presets' traits types), the units (Units, an hls::UnitSet) and the sizes ref::elaborate derived
-// from the data and the transfer function, with the omissions and their
-// reasons as comments. Defines VOXCAST_ELABORATED_CONFIG.
+// elaborated_config.hpp for the scene, C++14 like the design: the profile
+// (Profile, one of the compiled presets' traits types), the units (Units, an
+// hls::UnitSet) and the sizes ref::elaborate derived from the data and the
+// transfer function, with the omissions and their reasons as comments.
+// Defines VOXCAST_ELABORATED_CONFIG.
 inline constexpr const char* kElaboratedConfigFile = "elaborated_config.hpp";
 std::string elaborated_config_header(const ref::Scene& scene, const ref::Elaboration& e,
                                      const std::string& scene_name);
