@@ -48,7 +48,7 @@ foreach(t voxcast_differential ${diff_targets})
   # simulation compiles it, uninstrumented in the asan build too -- UBSan reports Xilinx's
   # own code there (ap_private.h shifts negative values left), as for the csim testbench
   # (tests/csim.cmake). -O0: the cost is compiling (ap's headers), not running.
-  target_compile_options(${t} PRIVATE -Wall -Wextra -O0 $<$<BOOL:${VOXCAST_WERROR}>:-Werror>)
+  target_compile_options(${t} PRIVATE -Wall -Wextra -O0 -g0 $<$<BOOL:${VOXCAST_WERROR}>:-Werror>)
   set_target_properties(${t} PROPERTIES CXX_STANDARD 17 CXX_EXTENSIONS OFF UNITY_BUILD OFF
                         DISABLE_PRECOMPILE_HEADERS ON)
 endforeach()

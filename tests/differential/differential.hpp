@@ -79,7 +79,7 @@ std::string type_name(const type_desc& t);
   X(conv_b) X(conv_a_to_b) X(conv_int) X(conv_uint) X(conv_ll) X(conv_ull) X(conv_short)       \
   X(conv_bool) X(conv_double) X(conv_float) X(assign_b)                                         \
   X(int_cast_s12) X(int_cast_u16) X(int_cast_s64) X(int_cast_u70) X(int_cast_s128)             \
-  X(neg) X(lnot) X(bnot) X(bnot_assigned) X(bnot_masked) X(pre_inc) X(pre_dec) X(post_inc)     \
+  X(neg) X(lnot) X(bnot) X(bnot_assigned) X(pre_inc) X(pre_dec) X(post_inc)                    \
   X(post_inc_value) X(post_dec)                                                                 \
   X(shl_int) X(shr_int) X(shl_uint) X(shr_uint) X(shl_ap_int) X(shr_ap_uint) X(shl_assign)     \
   X(shr_assign)                                                                                 \
