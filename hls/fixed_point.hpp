@@ -721,7 +721,7 @@ struct cmp_rule {
 };
 
 template <class A, class B>
-constexpr int compare(const A& a, const B& b) noexcept {
+constexpr int compare_as_is(const A& a, const B& b) noexcept {
   using C = cmp_rule<A, B>;
   using U = typename C::U;
   const wide<U> x = widen<U, C::RT::s1>(raw_of(a));
@@ -814,8 +814,104 @@ constexpr bool equal(const A& a, const B& b, bool_c<true> /* eq_modular */) noex
   return equal_modular(a, b, bool_c<rtype<A, B>::s1>{});
 }
 template <class A, class B>
-constexpr bool equal(const A& a, const B& b) noexcept {
+constexpr bool equal_as_is(const A& a, const B& b) noexcept {
   return equal(a, b, bool_c<cmp_rule<A, B>::eq_modular>{});
+}
+
+// ap's comparison widens the operand with fewer fraction bits before comparing the patterns
+// (ap_fixed_base.h, OP_CMP_AF): the left one to <W + F2 - F + 1, I + 1> and the right one to
+// <W2 + F - F2, I2>, each a conversion with the operand's OWN Q/O/N. The left one gains an
+// integer bit, so nothing happens to it. The right one keeps I2 and gains only fraction bits:
+// that conversion never quantizes and never leaves the range, and ap's operator= enters its
+// overflow path only for a signed SAT_SYM destination (I - S < I2 - S2 + (S2 && SAT_SYM)),
+// where "the result is MIN" counts as underflow and gives -MAX = MIN | 1 LSB of the widened
+// type. So exactly one case changes a value: a signed SAT_SYM right operand with fewer
+// fraction bits than the left one (a C integer or int_t on the left has F = 0, so a right
+// operand with I2 > W2 qualifies), holding MIN, is compared as MIN + 2^-F (F: the left
+// operand's fraction bits). The other modes (SAT, SAT_ZERO, WRAP with any N, WRAP_SM) and
+// unsigned operands keep the value. A SAT_SYM variable holds MIN after shifts, bit writes,
+// from_raw, and, for W2 = 1 (range {-1, 0}), after any assignment of a negative value.
+template <class A, class B>
+struct sat_sym_right : bool_c<false> {};
+template <class A, int W2, int I2, q_mode Q2, int N2>
+struct sat_sym_right<A, fixed_base<W2, I2, true, Q2, SAT_SYM, N2>>
+    : bool_c<(operand<A>::w - operand<A>::i > W2 - I2)> {};
+
+template <int W2, class R>
+constexpr bool holds_min(R raw) noexcept {
+  using U = word_t<W2>;
+  return raw < 0 && (static_cast<U>(raw) & low_mask<U>(W2 - 1)) == 0;
+}
+// The left operand with its lowest bit cleared, and whether that bit was set.
+template <class T>
+constexpr bool lsb_set(const T& a, bool_c<true> /* C integer */) noexcept {
+  return (a & 1) != 0;
+}
+template <class T>
+constexpr bool lsb_set(const T& a, bool_c<false> /* fixed or int */) noexcept {
+  return (a.raw() & 1) != 0;
+}
+// A signed 1-bit operand's -1 without its lowest bit is -2 (one LSB = 2^(I-1)), which needs a
+// second bit; both operands are then signed and compared exactly, so the wider type changes
+// nothing else. Everything else keeps its type (an odd pattern minus 1 stays in range).
+template <class T>
+struct even_type {
+  using type = T;
+};
+template <int I, q_mode Q, o_mode O, int N>
+struct even_type<fixed_base<1, I, true, Q, O, N>> {
+  using type = fixed_base<2, I + 1, true>;
+};
+template <>
+struct even_type<int_base<1, true>> {
+  using type = int_base<2, true>;
+};
+template <class T>
+constexpr T clear_lsb(const T& a, bool_c<true> /* C integer */) noexcept {
+  return static_cast<T>(a - (a & 1));
+}
+template <class T>
+constexpr typename even_type<T>::type clear_lsb(const T& a,
+                                                bool_c<false> /* fixed or int */) noexcept {
+  using R = typename even_type<T>::type;
+  return R::from_raw(static_cast<typename R::raw_type>(a.raw() - (a.raw() & 1)));
+}
+// a == MIN + 2^-F for the widened b = MIN: MIN aligned to a's LSB has a zero lowest bit, so
+// a must have its lowest bit set and equal MIN without it (exactly or modulo 2^wu, whichever
+// rule applies to these types: the widths are those of the widened operand either way).
+template <class A, class B>
+constexpr bool equal_to_min_plus_lsb(const A& a, const B& b) noexcept {
+  using is_c = bool_c<std::is_integral<A>::value>;
+  return lsb_set(a, is_c{}) && equal_as_is(clear_lsb(a, is_c{}), b);
+}
+
+template <class A, class B>
+constexpr int compare(const A& a, const B& b, bool_c<false>) noexcept {
+  return compare_as_is(a, b);
+}
+template <class A, class B>
+constexpr int compare(const A& a, const B& b, bool_c<true> /* sat_sym_right */) noexcept {
+  if (!holds_min<B::width>(b.raw())) return compare_as_is(a, b);
+  // b counts as MIN + 1 LSB of a: a <= MIN means a < b; above MIN, a == b or a > b.
+  if (compare_as_is(a, b) <= 0) return -1;
+  return equal_to_min_plus_lsb(a, b) ? 0 : 1;
+}
+template <class A, class B>
+constexpr int compare(const A& a, const B& b) noexcept {
+  return compare(a, b, bool_c<sat_sym_right<A, B>::value>{});
+}
+template <class A, class B>
+constexpr bool equal_sym(const A& a, const B& b, bool_c<false>) noexcept {
+  return equal_as_is(a, b);
+}
+template <class A, class B>
+constexpr bool equal_sym(const A& a, const B& b, bool_c<true> /* sat_sym_right */) noexcept {
+  if (!holds_min<B::width>(b.raw())) return equal_as_is(a, b);
+  return equal_to_min_plus_lsb(a, b);
+}
+template <class A, class B>
+constexpr bool equal(const A& a, const B& b) noexcept {
+  return equal_sym(a, b, bool_c<sat_sym_right<A, B>::value>{});
 }
 
 // Section 7: shift amounts. Signed C integers and ap_int go through to_int() (low 32 bits,
@@ -1471,9 +1567,12 @@ class int_base {
   }
 
   constexpr int_base operator+() const noexcept { return *this; }
-  constexpr int_base<W + 1, true> operator-() const noexcept {
-    using U = detail::word_t<W + 1>;
-    return detail::make_exact<int_base<W + 1, true>>(U(U(0) - static_cast<U>(v_)));
+  // ap computes -x as ap_int_base<1, false>(0) - x: W + 1 bits, but 3 for a signed 1-bit x
+  // (the unsigned 0 takes an extra bit next to a signed operand).
+  static constexpr int neg_width = (S && W == 1) ? 3 : W + 1;
+  constexpr int_base<neg_width, true> operator-() const noexcept {
+    using U = detail::word_t<neg_width>;
+    return detail::make_exact<int_base<neg_width, true>>(U(U(0) - static_cast<U>(v_)));
   }
   constexpr int_base operator~() const noexcept {
     return from_raw(static_cast<raw_type>(~static_cast<word>(v_)));
@@ -1629,6 +1728,34 @@ constexpr auto operator^(const A& a, const B& b) noexcept {
   return detail::binary<detail::op::bxor>(a, b);
 }
 
+// ---- Concatenation: not supported, and refused at compile time. ap overloads the comma
+// operator as bit concatenation on ap_int_base, range and bit references (ap_range_ref,
+// af_range_ref, ap_bit_ref, af_bit_ref) and C integers next to one of them
+// (ap_int_base.h, ap_int_ref.h, ap_fixed_ref.h): (a.range(7, 0), b.range(7, 0)) is a 16-bit
+// value there. Without an overload C++ would take the built-in comma and silently yield the
+// right operand, so every pair ap concatenates selects this deleted overload instead. Pairs
+// ap does not concatenate either (two fixed values, a fixed and an integer) keep the
+// built-in comma in both.
+namespace detail {
+template <class T>
+struct concat_part : bool_c<false> {};
+template <int W, bool S>
+struct concat_part<int_base<W, S>> : bool_c<true> {};
+template <class Owner>
+struct concat_part<range_ref<Owner>> : bool_c<true> {};
+template <class Owner>
+struct concat_part<bit_ref<Owner>> : bool_c<true> {};
+template <class A, class B>
+struct concatenation
+    : bool_c<(concat_part<A>::value || concat_part<B>::value) &&
+             (concat_part<A>::value || std::is_integral<A>::value) &&
+             (concat_part<B>::value || std::is_integral<B>::value)> {};
+}  // namespace detail
+template <class A, class B,
+          detail::enable_if_c<detail::concatenation<detail::remove_cvref_t<A>,
+                                                    detail::remove_cvref_t<B>>::value> = 0>
+void operator,(A&&, B&&) = delete;  // concatenation (ap's (a, b)) is not supported
+
 // ---- Comparisons (section 8): exact for equal signedness; mixed signedness follows ap's
 // C-conversion rules. Comparisons with double go through to_double().
 template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
@@ -1735,6 +1862,8 @@ template <int W, int I, bool S, q_mode Q, o_mode O, int N>
 constexpr bool fixed_base<W, I, S, Q, O, N>::is_signed;
 template <int W, bool S>
 constexpr int int_base<W, S>::width;
+template <int W, bool S>
+constexpr int int_base<W, S>::neg_width;
 template <int W, bool S>
 constexpr bool int_base<W, S>::is_signed;
 #endif

@@ -20,7 +20,8 @@
 //              double and float (quantization and overflow of the destination apply).
 //              An int_t / uint_t from a fixed: int_cast<T>(x) (toward zero, then wrap).
 //   Arithmetic a + b, a - b, a * b, a / b, a & b, a | b, a ^ b where each operand is a
-//              fixed/ufixed/int_t/uint_t or a C integer (never double/float: ill-formed);
+//              fixed/ufixed/int_t/uint_t or a C integer (never double/float: ill-formed;
+//              never a C integer / fixed or int_t: ap sim wraps the quotient);
 //              a % b between integer types only; -a, !a; ~a on signed types (on unsigned
 //              ones ac widens to a signed W+1-bit result: use only assigned straight into a
 //              W-bit unsigned); +=, -=, *=, /=, &=, |=, ^= with the same operands; ++/-- on
@@ -33,14 +34,16 @@
 //              unsigned operand only when the signed one cannot be negative or both are
 //              narrower than 32 bits (ap applies C's unsigned conversion, ac compares
 //              values); with double only when W <= 53.
-//   Convert    x.to_double(), to_int(), to_uint(), to_int64(), to_uint64(), to_long(),
-//              to_ulong(); on a fixed the to_int() family only when x is non-negative or
-//              integer-valued (ap truncates toward zero, ac floors). No static_cast of a
-//              fixed to a C type (ac_fixed has no conversion operators).
+//   Convert    x.to_double(), to_int(), to_uint(), to_int64(), to_uint64(); to_long(),
+//              to_ulong() on int_t/uint_t only (ap_fixed has neither); on a fixed the
+//              to_int() family only when x is non-negative or integer-valued (ap truncates
+//              toward zero, ac floors). No static_cast of a fixed to a C type (ac_fixed has
+//              no conversion operators).
 //   Bits       x[i] (read; write with = bool); read_bits(x, hi, lo), write_bits(x, hi, lo,
 //              v): bits hi..lo (hi >= lo, at most 64) as / from a std::uint64_t, raw (no
 //              quantization or overflow; a signed x re-extends its sign); read_bits(x),
-//              write_bits(x, v): all T::width <= 64 bits.
+//              write_bits(x, v): all T::width <= 64 bits. No concatenation (a, b): ap
+//              concatenates ints, ranges and bits, the clone refuses it at compile time.
 //   Queries    T::width, x.length(); fixed_iwidth<T>::value (I of a fixed type). The sign of
 //              a fixed: x < 0 (ac_fixed's is_neg() is private).
 //   Print      std::ostream << x.to_double().

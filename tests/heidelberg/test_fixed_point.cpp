@@ -124,7 +124,10 @@ TEST(VirimFixedPoint, ParityMemorySuppressesRepeatsAndReadsZeroOutOfBounds) {
   const bittrue::VirimMemory m = bittrue::make_virim_memory(v);
   hls::virim::ParityMemory<HeidelbergTraits<HP>> mem;
   hls::virim::host::bank_pointers(m, mem.bank);
-  for (int a = 0; a < 3; ++a) mem.regs.lo[a] = 0, mem.regs.hi[a] = 7;
+  for (int a = 0; a < 3; ++a) {  // two statements: a comma between int_t values is concatenation
+    mem.regs.lo[a] = 0;
+    mem.regs.hi[a] = 7;
+  }
   mem.regs.hy = 4;
   mem.regs.hx2 = 2;
   mem.reset();

@@ -102,6 +102,9 @@ static_assert(std::is_same<decltype(v<A8>() & v<U6>()), fixed<8, 4>>::value, "&"
 static_assert(std::is_same<decltype(v<A8>() + 1u), fixed<38, 34>>::value, "+ unsigned");
 static_assert(std::is_same<decltype(v<int_t<8>>() % v<uint_t<5>>()), int_t<6>>::value, "%");
 static_assert(std::is_same<decltype(-v<uint_t<8>>()), int_t<9>>::value, "unary -");
+static_assert(std::is_same<decltype(-v<int_t<1>>()), int_t<3>>::value &&
+                  std::is_same<decltype(-v<uint_t<1>>()), int_t<2>>::value,
+              "unary - of 1 bit (ap: uint<1>(0) - x)");
 static_assert(std::is_same<decltype(~v<fixed<8, 4, RND, SAT>>()), fixed<8, 4>>::value, "~");
 static_assert(
     std::is_same<decltype(v<fixed<64, 32>>() * v<fixed<64, 32>>()), fixed<128, 64>>::value,
@@ -116,6 +119,23 @@ static_assert(fixed<8, 4>(3) > 2 && fixed<8, 4>(3) == 3.0 && 2.5 < fixed<8, 4>(3
 static_assert(ufixed<8, 8, TRN, SAT>(-3).raw() == 0 && fixed<8, 8, TRN, SAT>(300).raw() == 127,
               "SAT");
 static_assert(fixed<4, 4, TRN, SAT_SYM>(-8).raw() == -7, "SAT_SYM");
+static_assert(!(fixed<8, 4>(-1) == fixed<1, 1, TRN, SAT_SYM>(-5)) &&
+                  fixed<8, 4>(-1) < fixed<1, 1, TRN, SAT_SYM>(-5) &&
+                  fixed<8, 4>(-0.9375) == fixed<1, 1, TRN, SAT_SYM>(-5) &&
+                  fixed<1, -2>(-0.125) == fixed<1, -1, TRN, SAT_SYM>(-0.25) &&
+                  -7 == fixed<2, 4, TRN, SAT_SYM>::from_raw(-2) &&
+                  int_t<1>(-1) == fixed<1, 2, TRN, SAT_SYM>(-2),
+              "a SAT_SYM right operand holding MIN is widened to -MAX (ap's OP_CMP_AF)");
+template <class A, class B, class = void>
+struct can_comma : std::false_type {};
+template <class A, class B>
+struct can_comma<A, B, void_t<decltype((std::declval<A>(), std::declval<B>()))>>
+    : std::true_type {};
+static_assert(!can_comma<decltype(std::declval<A8&>().range(7, 0)),
+                         decltype(std::declval<A8&>().range(7, 0))>::value &&
+                  !can_comma<int_t<8>, uint_t<4>>::value && !can_comma<int, int_t<8>>::value &&
+                  can_comma<A8, A8>::value,
+              "concatenation is refused where ap concatenates");
 static_assert(fixed<6, 3, RND_CONV>(0.0625).raw() == 0 && fixed<6, 3, RND_CONV>(0.1875).raw() == 2,
               "RND_CONV ties to even");
 static_assert(int_t<70>(-5).to_int64() == -5 && uint_t<8>(300).to_uint() == 44, "wrap");
