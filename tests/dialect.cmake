@@ -14,9 +14,7 @@
 # (host code out, hls/pragma.hpp), as a C simulation does.
 set(voxcast_dialect_flags -std=c++14 -fsyntax-only -Wall -Wextra -Werror -pedantic
     -fno-exceptions -fno-rtti -Wno-unknown-pragmas -I${PROJECT_SOURCE_DIR})
-
-find_program(VOXCAST_GXX NAMES g++ g++-12)
-find_program(VOXCAST_CLANGXX NAMES clang++ clang++-14)
+# VOXCAST_GXX and VOXCAST_CLANGXX: found in tests/CMakeLists.txt.
 
 set(voxcast_dialect_types_clone -D__SYNTHESIS__)
 set(voxcast_dialect_types_xilinx -DVOXCAST_HLS_KERNELS_ONLY -DVOXCAST_VENDOR_TYPES
