@@ -14,7 +14,7 @@
 # (host code out, hls/pragma.hpp), as a C simulation does.
 set(voxcast_dialect_flags -std=c++14 -fsyntax-only -Wall -Wextra -Werror -pedantic
     -fno-exceptions -fno-rtti -Wno-unknown-pragmas -I${PROJECT_SOURCE_DIR})
-# VOXCAST_GXX and VOXCAST_CLANGXX: found in tests/CMakeLists.txt.
+# voxcast_host_cxx_gcc / _clang: found in tests/CMakeLists.txt.
 
 set(voxcast_dialect_types_clone -D__SYNTHESIS__)
 set(voxcast_dialect_types_xilinx -DVOXCAST_HLS_KERNELS_ONLY -DVOXCAST_VENDOR_TYPES
@@ -29,12 +29,8 @@ set(voxcast_dialect_top_balanced hls/vizard2_synth_top.cpp -DVOXCAST_SYNTH_PROFI
 set(voxcast_dialect_top_precise hls/vizard2_synth_top.cpp -DVOXCAST_SYNTH_PROFILE=PreciseTraits)
 set(voxcast_dialect_top_virim hls/virim/virim_synth_top.cpp)
 
-foreach(compiler gxx clangxx)
-  if(compiler STREQUAL "gxx")
-    set(cxx ${VOXCAST_GXX})
-  else()
-    set(cxx ${VOXCAST_CLANGXX})
-  endif()
+foreach(compiler gcc clang)
+  set(cxx ${voxcast_host_cxx_${compiler}})
   if(NOT cxx)
     message(STATUS "dialect tests: no ${compiler} found; its C++14 checks are not registered")
     continue()
