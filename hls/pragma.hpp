@@ -7,9 +7,10 @@
 // VOXCAST_HLS_HOST_CODE: 1 where the host side of each unit header (the
 // host:: loaders from the bit-true set-up, which use std::vector, strings,
 // exceptions and C++20) is compiled, 0 where only the kernels are: under
-// __SYNTHESIS__, and under VOXCAST_HLS_KERNELS_ONLY, which a C simulation
-// passes (Xilinx's simulation headers refuse __SYNTHESIS__, and a csim
-// testbench is compiled as C++14 like the design; docs/synthesis.md).
+// __SYNTHESIS__, and under VOXCAST_HLS_KERNELS_ONLY, which the synthesized
+// tops' and the testbench's own files define (a C simulation has no
+// __SYNTHESIS__, Xilinx's simulation headers refuse it, and those files are
+// C++14 like the design; docs/synthesis.md).
 #pragma once
 
 #if defined(__SYNTHESIS__)

@@ -4,7 +4,8 @@
 // (hls/tb/vizard2_frame_tb.cpp). Profile and units come from the scene's
 // elaborated_config.hpp (`voxcast synth-script`, passed with -include), else
 // the full design (AllUnits) for -DVOXCAST_SYNTH_PROFILE=Vizard2Traits |
-// BalancedTraits | PreciseTraits. C++14.
+// BalancedTraits | PreciseTraits (or the presets' value names kVizard2 |
+// kBalanced | kPrecise, which the C++20 side uses). C++14.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +16,18 @@
 #include "hls/vizard2_top.hpp"
 #include "refmodel/precision/profile_traits.hpp"
 
+// The preset VOXCAST_SYNTH_PROFILE names, as its traits type. An unknown name
+// fails as "VOXCAST_PRESET_TRAITS_<name> was not declared".
+#define VOXCAST_PRESET_TRAITS_Vizard2Traits Vizard2Traits
+#define VOXCAST_PRESET_TRAITS_BalancedTraits BalancedTraits
+#define VOXCAST_PRESET_TRAITS_PreciseTraits PreciseTraits
+#define VOXCAST_PRESET_TRAITS_kVizard2 Vizard2Traits
+#define VOXCAST_PRESET_TRAITS_kBalanced BalancedTraits
+#define VOXCAST_PRESET_TRAITS_kPrecise PreciseTraits
+#define VOXCAST_PRESET_CAT_(a, b) a##b
+#define VOXCAST_PRESET_CAT(a, b) VOXCAST_PRESET_CAT_(a, b)
+#define VOXCAST_SYNTH_PROFILE_TRAITS VOXCAST_PRESET_CAT(VOXCAST_PRESET_TRAITS_, VOXCAST_SYNTH_PROFILE)
+
 namespace voxcast {
 namespace hls {
 namespace top {
@@ -22,7 +35,7 @@ namespace top {
 using TopProfile = elaborated::Profile;
 using TopUnits = elaborated::Units;
 #ifdef VOXCAST_SYNTH_PROFILE
-static_assert(std::is_same<TopProfile, VOXCAST_SYNTH_PROFILE>::value,
+static_assert(std::is_same<TopProfile, VOXCAST_SYNTH_PROFILE_TRAITS>::value,
               "elaborated_config.hpp was written for another precision profile");
 #endif
 // The sizes the elaboration derived from the data fit the profile's fields.
@@ -34,9 +47,9 @@ static_assert(elaborated::kClassEntries <= (1 << TopProfile::tf_addr_bits),
               "the transfer function needs more classification entries than the profile has");
 #else
 #ifndef VOXCAST_SYNTH_PROFILE
-#error "define VOXCAST_SYNTH_PROFILE as one of Vizard2Traits, BalancedTraits, PreciseTraits, or -include elaborated_config.hpp"
+#error "define VOXCAST_SYNTH_PROFILE as one of Vizard2Traits, BalancedTraits, PreciseTraits (or kVizard2, kBalanced, kPrecise), or -include elaborated_config.hpp"
 #endif
-using TopProfile = VOXCAST_SYNTH_PROFILE;
+using TopProfile = VOXCAST_SYNTH_PROFILE_TRAITS;
 using TopUnits = hls::AllUnits;
 #endif
 using Word = hls::InterpolationParams<TopProfile>::packed_word_t;

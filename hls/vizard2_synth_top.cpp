@@ -16,6 +16,12 @@
 // clang++ -std=c++14, on voxcast's types and on Xilinx's and Catapult's) for
 // each preset (hls/CMakeLists.txt) and for two elaborated scenes
 // (tests/CMakeLists.txt), and tools/synth_lint checks it.
+// A synthesized top's translation unit never takes the host-side loaders
+// (C++20, hls/pragma.hpp): not under a vendor's synthesis, and not in a C
+// simulation or a plain C++14 compile against the vendor's simulation headers.
+#ifndef VOXCAST_HLS_KERNELS_ONLY
+#define VOXCAST_HLS_KERNELS_ONLY
+#endif
 #include <cstdint>
 
 #include "hls/pragma.hpp"

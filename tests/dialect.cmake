@@ -10,17 +10,18 @@
 # vendor pragmas (-Wno-unknown-pragmas) — loop labels are marked [[gnu::unused]]
 # in the code instead. On voxcast's types the tops are compiled with
 # -D__SYNTHESIS__ (pragmas live, host code out); Xilinx's simulation headers
-# refuse __SYNTHESIS__, so the vendor builds pass VOXCAST_HLS_KERNELS_ONLY
-# (host code out, hls/pragma.hpp), as a C simulation does.
+# refuse __SYNTHESIS__, so the vendor builds compile without it, as a C
+# simulation does: the top's own file defines VOXCAST_HLS_KERNELS_ONLY (host
+# code out, hls/pragma.hpp).
 set(voxcast_dialect_flags -std=c++14 -fsyntax-only -Wall -Wextra -Werror -pedantic
     -fno-exceptions -fno-rtti -Wno-unknown-pragmas -I${PROJECT_SOURCE_DIR})
 # voxcast_host_cxx_gcc / _clang: found in tests/CMakeLists.txt.
 
 set(voxcast_dialect_types_clone -D__SYNTHESIS__)
-set(voxcast_dialect_types_xilinx -DVOXCAST_HLS_KERNELS_ONLY -DVOXCAST_VENDOR_TYPES
+set(voxcast_dialect_types_xilinx -DVOXCAST_VENDOR_TYPES
     -isystem ${VOXCAST_VENDOR_DIR}/xilinx-ap-types/include)
 set(voxcast_dialect_header_xilinx ${VOXCAST_VENDOR_DIR}/xilinx-ap-types/include/ap_fixed.h)
-set(voxcast_dialect_types_catapult -DVOXCAST_HLS_KERNELS_ONLY -DVOXCAST_AC_TYPES
+set(voxcast_dialect_types_catapult -DVOXCAST_AC_TYPES
     -isystem ${VOXCAST_VENDOR_DIR}/ac-types/include)
 set(voxcast_dialect_header_catapult ${VOXCAST_VENDOR_DIR}/ac-types/include/ac_fixed.h)
 
@@ -55,3 +56,14 @@ foreach(compiler gcc clang)
     endforeach()
   endforeach()
 endforeach()
+
+# The command a new user types (issue 15), exactly: the preset's value name,
+# Xilinx's folder with -I, no other flag.
+if(EXISTS ${voxcast_dialect_header_xilinx} AND voxcast_host_cxx_gcc)
+  add_test(NAME dialect.cxx14.user_command
+           COMMAND ${voxcast_host_cxx_gcc} -std=c++14 -fsyntax-only -DVOXCAST_VENDOR_TYPES
+                   -DVOXCAST_SYNTH_PROFILE=kBalanced -I${PROJECT_SOURCE_DIR}
+                   -I${VOXCAST_VENDOR_DIR}/xilinx-ap-types/include
+                   ${PROJECT_SOURCE_DIR}/hls/vizard2_synth_top.cpp)
+  set_tests_properties(dialect.cxx14.user_command PROPERTIES LABELS "dialect;hls")
+endif()

@@ -11,6 +11,12 @@
 // C++14 against the vendor's types, compiled like the top (same -cflags:
 // -include elaborated_config.hpp, VOXCAST_HLS_KERNELS_ONLY). ctest compiles
 // and runs it with g++ against Xilinx's headers (tests/CMakeLists.txt).
+// A synthesized top's translation unit never takes the host-side loaders
+// (C++20, hls/pragma.hpp): not under a vendor's synthesis, and not in a C
+// simulation or a plain C++14 compile against the vendor's simulation headers.
+#ifndef VOXCAST_HLS_KERNELS_ONLY
+#define VOXCAST_HLS_KERNELS_ONLY
+#endif
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>

@@ -6,6 +6,12 @@
 // kernel (hls/virim/virim_top.hpp) takes them as an array of 16 pointers.
 // C++14; CMake compiles it as the vendor tool sees it (-D__SYNTHESIS__, no
 // exceptions, no RTTI) and tools/synth_lint checks it.
+// A synthesized top's translation unit never takes the host-side loaders
+// (C++20, hls/pragma.hpp): not under a vendor's synthesis, and not in a C
+// simulation or a plain C++14 compile against the vendor's simulation headers.
+#ifndef VOXCAST_HLS_KERNELS_ONLY
+#define VOXCAST_HLS_KERNELS_ONLY
+#endif
 #include <cstdint>
 
 #include "hls/pragma.hpp"
