@@ -110,6 +110,7 @@ std::string elaborated_config_header(const ref::Scene& scene, const ref::Elabora
   if (!hls::consistent(u))
     throw Error("synth-script: the elaborated units of " + scene_name + " are inconsistent");
   auto b = [](bool v) { return v ? "true" : "false"; };
+  auto b01 = [](bool v) { return v ? "1" : "0"; };
   std::ostringstream os;
   os << "// The elaborated configuration of the VIZARD II top for " << scene_name << ":\n"
      << "// the units the scene needs and their sizes, from ref::elaborate\n"
@@ -117,7 +118,13 @@ std::string elaborated_config_header(const ref::Scene& scene, const ref::Elabora
      << "// hls/vizard2_synth_top.cpp reads it (-include), docs/synthesis.md.\n"
      << "//\n// Left out:\n";
   for (const ref::Omission& o : e.omitted) os << "//   " << o.unit << ": " << o.reason << "\n";
-  os << "#pragma once\n\n#define VOXCAST_ELABORATED_CONFIG 1\n\n"
+  os << "#pragma once\n\n#define VOXCAST_ELABORATED_CONFIG 1\n"
+     << "// The units with on-chip tables, for the top's storage pragmas (the\n"
+     << "// preprocessor cannot read Units below; the top checks they agree).\n"
+     << "#define VOXCAST_ELABORATED_HAS_PERSPECTIVE " << b01(u.perspective) << "\n"
+     << "#define VOXCAST_ELABORATED_HAS_CLASSIFICATION " << b01(u.classification) << "\n"
+     << "#define VOXCAST_ELABORATED_HAS_REFLECTANCE_MAP " << b01(u.reflectance_map) << "\n"
+     << "#define VOXCAST_ELABORATED_HAS_SPACE_LEAPING " << b01(u.space_leaping) << "\n\n"
      << "#include \"hls/units.hpp\"\n#include \"refmodel/precision/profile_traits.hpp\"\n\n"
      << "// C++14, as the design (the vendor front ends' dialect).\n"
      << "namespace voxcast {\nnamespace elaborated {\n\n"

@@ -190,15 +190,32 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
   return acc;
 }
 
-// The bank reads and the crossbar: corner j = dx | dy<<1 | dz<<2 is the word
-// of bank j ^ parity (read at that bank's address).
-template <class P, class Banks>
-void gather(const Banks& banks, const BankAccess<P>& acc, VoxelWordFx<P> corner[8]) {
+// §3.3 the crossbar: the card reads every bank at its own port in every
+// access (bank b at addr[b], the same port each time), and routes the data:
+// corner j = dx | dy<<1 | dz<<2 is the word of bank j ^ parity. An 8x8
+// multiplexer on the words, selected by the cell's parity; no address or port
+// is chosen at run time.
+template <class P>
+void crossbar(const VoxelWordFx<P> word[8], unsigned parity, VoxelWordFx<P> corner[8]) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
   [[gnu::unused]] crossbar_loop : for (int j = 0; j < 8; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
-    const int b = static_cast<int>(static_cast<unsigned>(j) ^ acc.parity);
-    corner[j] = banks.read(b, acc.addr[b]);
+    corner[j] = word[static_cast<unsigned>(j) ^ parity];
   }
+}
+
+// The bank reads and the crossbar on a bank view: bank b is read at the
+// constant index b (one port per bank once the loop is unrolled), then the
+// crossbar routes the words. The streamed top reads its eight bank ports
+// itself (hls/vizard2_dataflow.hpp, interpolation_stage).
+template <class P, class Banks>
+void gather(const Banks& banks, const BankAccess<P>& acc, VoxelWordFx<P> corner[8]) {
+  VoxelWordFx<P> word[8];
+  [[gnu::unused]] bank_read_loop : for (int b = 0; b < 8; ++b) {
+    VOXCAST_HLS_PRAGMA(HLS UNROLL)
+    word[b] = banks.read(b, acc.addr[b]);
+  }
+  crossbar<P>(word, acc.parity, corner);
 }
 
 // An interpolated sample (§3.5): value vb.sf unsigned, gradient (index space).

@@ -52,6 +52,33 @@ static_assert(elaborated::kClassEntries <= (1 << TopProfile::tf_addr_bits),
 using TopProfile = VOXCAST_SYNTH_PROFILE_TRAITS;
 using TopUnits = hls::AllUnits;
 #endif
+// The on-chip tables the top holds, as preprocessor flags for its storage
+// pragmas (a pragma may name only a variable that exists): the elaborated
+// configuration's VOXCAST_ELABORATED_HAS_* flags, else the full design. They
+// must say what TopUnits says (checked here).
+#ifdef VOXCAST_ELABORATED_CONFIG
+#define VOXCAST_TOP_HAS_RSQRT VOXCAST_ELABORATED_HAS_PERSPECTIVE
+#define VOXCAST_TOP_HAS_CLASSIFICATION VOXCAST_ELABORATED_HAS_CLASSIFICATION
+#define VOXCAST_TOP_HAS_REFLECTANCE_MAP VOXCAST_ELABORATED_HAS_REFLECTANCE_MAP
+#define VOXCAST_TOP_HAS_SPACE_LEAPING VOXCAST_ELABORATED_HAS_SPACE_LEAPING
+#else
+#define VOXCAST_TOP_HAS_RSQRT 1
+#define VOXCAST_TOP_HAS_CLASSIFICATION 1
+#define VOXCAST_TOP_HAS_REFLECTANCE_MAP 1
+#define VOXCAST_TOP_HAS_SPACE_LEAPING 1
+#endif
+static_assert((VOXCAST_TOP_HAS_RSQRT != 0) == TopUnits::perspective &&
+                  (VOXCAST_TOP_HAS_CLASSIFICATION != 0) == TopUnits::classification &&
+                  (VOXCAST_TOP_HAS_REFLECTANCE_MAP != 0) == TopUnits::reflectance_map &&
+                  (VOXCAST_TOP_HAS_SPACE_LEAPING != 0) == TopUnits::space_leaping,
+              "the storage flags (VOXCAST_ELABORATED_HAS_*) disagree with the elaborated units: "
+              "regenerate elaborated_config.hpp with `voxcast synth-script`");
+// The reflectance map's banks: bilinear mode reads entries k, k+1, k+side,
+// k+side+1 of each table in one clock, two in each half of a cyclic split by
+// two whatever side's parity, so two dual-port banks serve them; nearest mode
+// reads one entry.
+constexpr int kReflectanceBanks = hls::ReflectanceParams<TopProfile>::bilinear ? 2 : 1;
+
 using Word = hls::InterpolationParams<TopProfile>::packed_word_t;
 using Frame = hls::FrameState<TopProfile, TopUnits>;
 using Pixel = hls::OutputPixel<TopProfile>;

@@ -4,6 +4,17 @@
 // Vitis-Libraries split: the interface pragmas are here, in the top itself
 // (a vendor tool reads INTERFACE pragmas only in the top function).
 //
+// Shaped like the card (docs/synthesis.md, "The streamed top"):
+//   1. Load phase: the frame's registers and tables, which the host wrote to
+//      external memory (gmem_frame), are copied into on-chip memories bound
+//      and partitioned below, as the card's PCI upload filled its SRAMs and
+//      registers between frames.
+//   2. The streamed pipeline (hls/vizard2_dataflow.hpp): six processes under
+//      DATAFLOW, one sample per clock, run once per image row. Its only
+//      external memory is the eight voxel banks, each at its own port (two
+//      per DIMM bundle, as the card's four DIMM channels), and the frame
+//      buffer; tools/synth_lint --region checks that on the compiler's AST.
+//
 // `voxcast synth-script SCENE` writes the scene's elaborated_config.hpp
 // (ref::elaborate: which units the scene needs; cosim/synth_script.hpp) and
 // its Tcl passes it with `-include`, so the top instantiates only those units
@@ -25,10 +36,11 @@
 #include <cstdint>
 
 #include "hls/pragma.hpp"
+#include "hls/vizard2_dataflow.hpp"
 #include "hls/vizard2_synth_config.hpp"
-#include "hls/vizard2_top.hpp"
 
 using voxcast::hls::top::Frame;
+using voxcast::hls::top::kReflectanceBanks;
 using voxcast::hls::top::Pixel;
 using voxcast::hls::top::TopProfile;
 using voxcast::hls::top::TopUnits;
@@ -55,7 +67,55 @@ void vizard2_frame_top(const Frame* frame, const Word* bank0, const Word* bank1,
   VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = bank7 offset = slave bundle = dimm3)
   VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = fb offset = slave bundle = gmem_fb)
   VOXCAST_HLS_PRAGMA(HLS INTERFACE m_axi port = samples offset = slave bundle = gmem_fb)
-  const voxcast::hls::PackedBanks<TopProfile> banks{
-      {bank0, bank1, bank2, bank3, bank4, bank5, bank6, bank7}};
-  voxcast::hls::render_rows<TopProfile, TopUnits>(*frame, banks, width, 0, height, fb, samples);
+
+  // The on-chip state. Static: it is the card's SRAMs and registers, kept
+  // between frames (and, in a C simulation, megabytes off the stack).
+  static Frame state;
+  // Registers read three at a time (one per axis, §1-3): flip-flops.
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.A type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.B type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.C type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.E type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.O type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.Pcol type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.Rrow type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.U type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.K type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.LO type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.HI type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.dims type = complete)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.LAST type = complete)
+#if VOXCAST_TOP_HAS_RSQRT
+  // §1.2 seed ROM: one read per ray, 2^rsqrt_seed_bits small words.
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.rsqrt.seed type = ram_1p impl = lutram)
+#endif
+#if VOXCAST_TOP_HAS_CLASSIFICATION
+  // §4: one entry per sample, packed into one word (the paper's two 32-bit
+  // SRAMs read in parallel), one single-port block RAM.
+  VOXCAST_HLS_PRAGMA(HLS AGGREGATE variable = state.class_table.entry compact = bit)
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.class_table.entry type = ram_1p impl = bram)
+#endif
+#if VOXCAST_TOP_HAS_REFLECTANCE_MAP
+  // §5: diffuse and specular, two memories read in the same clock; bilinear
+  // mode reads four entries of each (kReflectanceBanks, vizard2_synth_config.hpp).
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.reflectance.diffuse type = cyclic factor = kReflectanceBanks)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.reflectance.specular type = cyclic factor = kReflectanceBanks)
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.reflectance.diffuse type = ram_2p impl = bram)
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.reflectance.specular type = ram_2p impl = bram)
+  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.reflectance_regs.IS type = complete)
+#endif
+#if VOXCAST_TOP_HAS_SPACE_LEAPING
+  // docs/leaping.md: one min-max block read and two prefix-table reads (the
+  // block's lowest and highest classification address) per sample.
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.minmax.block type = ram_1p impl = bram)
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.leap.prefix type = ram_2p impl = bram)
+#endif
+  (void)kReflectanceBanks;
+
+  voxcast::hls::load_frame_state<TopProfile, TopUnits>(*frame, state);
+  std::uint64_t count = 0;
+  voxcast::hls::render_frame_streamed<TopProfile, TopUnits>(state, bank0, bank1, bank2, bank3,
+                                                            bank4, bank5, bank6, bank7, width,
+                                                            height, fb, count);
+  *samples = count;
 }

@@ -61,21 +61,39 @@ struct FrameState {
 template <bool Perspective, bool Parallel>
 struct Cameras {};
 
-template <class P, class U>
-RaySetup<P> ray_setup_for(const FrameState<P, U>& f, int px, int py, Cameras<false, true>) {
-  return ray_setup_parallel<P>(f.geometry, px, py);
+template <class P, class Rom>
+RaySetup<P> ray_setup_for(const GeometryRegisters<P>& g, const Rom&, int px, int py,
+                          Cameras<false, true>) {
+  return ray_setup_parallel<P>(g, px, py);
 }
-template <class P, class U>
-RaySetup<P> ray_setup_for(const FrameState<P, U>& f, int px, int py, Cameras<true, false>) {
-  return ray_setup_perspective<P>(f.geometry, f.rsqrt.seed, px, py);
+template <class P, class Rom>
+RaySetup<P> ray_setup_for(const GeometryRegisters<P>& g, const Rom& rom, int px, int py,
+                          Cameras<true, false>) {
+  return ray_setup_perspective<P>(g, rom.seed, px, py);
 }
-template <class P, class U>
-RaySetup<P> ray_setup_for(const FrameState<P, U>& f, int px, int py, Cameras<true, true>) {
-  return ray_setup<P>(f.geometry, f.rsqrt.seed, px, py);
+template <class P, class Rom>
+RaySetup<P> ray_setup_for(const GeometryRegisters<P>& g, const Rom& rom, int px, int py,
+                          Cameras<true, true>) {
+  return ray_setup<P>(g, rom.seed, px, py);
 }
+// The ray of pixel (px, py) from the geometry registers and, in a design with
+// the perspective unit, the rsqrt ROM (U's absent-unit stand-in otherwise).
 template <class P, class U>
-RaySetup<P> ray_setup_for(const FrameState<P, U>& f, int px, int py) {
-  return ray_setup_for<P, U>(f, px, py, Cameras<U::perspective, U::parallel_origin>{});
+RaySetup<P> ray_setup_for(const GeometryRegisters<P>& g,
+                          const UnitState<U::perspective, RsqrtRom<P>>& rom, int px, int py) {
+  return ray_setup_for<P>(g, rom, px, py, Cameras<U::perspective, U::parallel_origin>{});
+}
+
+// The frame's mode as the two flags the datapath uses: the mode register
+// decides only between modes the units allow.
+template <class U>
+bool frame_is_mip(FrameMode mode) {
+  constexpr Units u = units_of<U>();
+  return can_mip(u) && (!can_composite(u) || mode == FrameMode::Mip);
+}
+template <class U>
+bool frame_is_shaded(FrameMode mode) {
+  return can_shade(units_of<U>()) && mode == FrameMode::Shaded;
 }
 
 // Tracing hook: the default does nothing and compiles away. The cosim harness
@@ -113,14 +131,15 @@ bool mip_sample(bool, typename CompositorParams<P>::value_t&, const Pos&, const 
 }
 
 // §5: the reflectance map's lookup for a shaded frame; (0, 0) otherwise.
-template <class P, class U>
-Reflect<P> reflect_for(const FrameState<P, U>& f, bool shaded, const Sample<P>& s, Has<true>) {
+template <class P, class Map, class Regs>
+Reflect<P> reflect_for(const Map& map, const Regs& regs, bool shaded, const Sample<P>& s,
+                       Has<true>) {
   Reflect<P> r{0, 0};
-  if (shaded) r = reflect<P>(f.reflectance, f.reflectance_regs, s.g);
+  if (shaded) r = reflect<P>(map, regs, s.g);
   return r;
 }
-template <class P, class U>
-Reflect<P> reflect_for(const FrameState<P, U>&, bool, const Sample<P>&, Has<false>) {
+template <class P, class Map, class Regs>
+Reflect<P> reflect_for(const Map&, const Regs&, bool, const Sample<P>&, Has<false>) {
   return Reflect<P>{0, 0};
 }
 
@@ -135,6 +154,28 @@ bool ray_goes_on(const Accumulator<P>&, const CompositorRegisters<P>&, Has<false
   return true;
 }
 
+// §6: the shaded colour of a classified sample with alpha != 0: the
+// reflectance map's (D, S) for a shaded frame, then the shader. Without a
+// reflectance map `shaded` is the constant false (frame_is_shaded), so
+// c = U(colour) (§6) and the intensity products inside shade() have no fan-out.
+template <class P, class U>
+ShadedColor<P> shade_sample(const UnitState<U::reflectance_map, ReflectanceMap<P>>& map,
+                            const UnitState<U::reflectance_map, ReflectanceRegisters<P>>& regs,
+                            bool shaded, const ClassEntry<P>& e, const Sample<P>& s,
+                            Reflect<P>& r) {
+  r = reflect_for<P>(map, regs, shaded, s, Has<can_shade(units_of<U>())>{});
+  return shade<P>(e, r, shaded);
+}
+
+// §7.1-7.3: the over operator for a classified, shaded sample with alpha != 0;
+// false once ERT ends the ray.
+template <class P, class U>
+bool composite_step(const CompositorRegisters<P>& regs, const ShadedColor<P>& c,
+                    const typename ClassificationParams<P>::alpha_t& alpha, Accumulator<P>& acc) {
+  composite<P>(acc, c, alpha);
+  return ray_goes_on<P>(acc, regs, Has<U::ert>{});
+}
+
 // §4-7: classification, shading and the over operator for one sample; false
 // once ERT ends the ray.
 template <class P, class U, class Pos, class Tracer>
@@ -145,13 +186,11 @@ bool composite_sample(const FrameState<P, U>& f, bool shaded, const Pos& p, cons
     tracer.sample(p, s, e, Reflect<P>{0, 0}, ShadedColor<P>{}, acc);
     return true;
   }
-  // Without a reflectance map `shaded` is the constant false (cast_ray), so
-  // c = U(colour) (§6) and the intensity products inside shade() have no fan-out.
-  const Reflect<P> r = reflect_for<P, U>(f, shaded, s, Has<can_shade(units_of<U>())>{});
-  const ShadedColor<P> c = shade<P>(e, r, shaded);
-  composite<P>(acc, c, e.alpha);
+  Reflect<P> r;
+  const ShadedColor<P> c = shade_sample<P, U>(f.reflectance, f.reflectance_regs, shaded, e, s, r);
+  const bool goes_on = composite_step<P, U>(f.compositor, c, e.alpha, acc);
   tracer.sample(p, s, e, r, c, acc);
-  return ray_goes_on<P>(acc, f.compositor, Has<U::ert>{});
+  return goes_on;
 }
 template <class P, class U, class Pos, class Tracer>
 bool composite_sample(const FrameState<P, U>&, bool, const Pos&, const Sample<P>&,
@@ -195,13 +234,12 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
                         std::uint64_t& samples, Tracer& tracer) {
   VOXCAST_HLS_PRAGMA(HLS INLINE off)
   constexpr Units u = units_of<U>();
-  const RaySetup<P> ray = ray_setup_for<P, U>(f, px, py);
+  const RaySetup<P> ray = ray_setup_for<P, U>(f.geometry, f.rsqrt, px, py);
   tracer.ray(ray);
   Accumulator<P> acc;
   if (!ray.hit) return output<P>(acc);
-  // The mode register decides only between modes the units allow.
-  const bool mip = can_mip(u) && (!can_composite(u) || f.mode == FrameMode::Mip);
-  const bool shaded = can_shade(u) && f.mode == FrameMode::Shaded;
+  const bool mip = frame_is_mip<U>(f.mode);
+  const bool shaded = frame_is_shaded<U>(f.mode);
   typename CompositorParams<P>::value_t peak = 0;
   using HasMip = Has<can_mip(u)>;
   using HasComposite = Has<can_composite(u)>;

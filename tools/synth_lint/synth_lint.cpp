@@ -3,7 +3,8 @@
 // code (libclang's AST of the translation unit), not on its text.
 //
 //   voxcast_synth_lint --top NAME [--top NAME...] --root DIR [--root DIR...]
-//                      [--exempt PATH...] [--verbose] -- COMPILER_ARGS... FILE.cpp
+//                      [--exempt PATH...] [--region NAME --port NAME...] [--verbose]
+//                      -- COMPILER_ARGS... FILE.cpp
 //
 // The translation unit is parsed as the synthesis compile sees it (the caller
 // passes -D__SYNTHESIS__ among the compiler arguments). From each top function
@@ -34,6 +35,15 @@
 //                       VOXCAST_HLS_PRAGMA(HLS INTERFACE ... port = NAME) in the
 //                       top's own body (Vitis ignores INTERFACE pragmas in
 //                       sub-functions)
+//   sample-loop-ports   with --region NAME and --port NAME...: the top calls
+//                       the function NAME (the per-sample pipeline) and passes
+//                       it none of its pointer parameters but the --port ones
+//                       (as themselves, not through a local pointer or
+//                       reference), so the region can reach no external memory
+//                       but those ports; and no function reachable from the
+//                       region reads or writes a mutable global variable. The
+//                       region's other arguments are the top's values and its
+//                       locals (the on-chip copies of the load phase).
 //
 // Set-up tables: the tables the host builds in double (reflectance map,
 // classification, rsqrt seeds) live in host-only code, namespace `host` inside
@@ -250,6 +260,8 @@ struct Options {
   std::vector<std::string> roots;    // real paths
   std::vector<std::string> exempts;  // real paths (files or folders)
   std::vector<std::string> compiler_args;
+  std::vector<std::string> regions;  // sample-loop-ports: the region functions' names
+  std::set<std::string> ports;       // ... and the top's pointer parameters they may take
   bool verbose = false;
 };
 
@@ -276,9 +288,11 @@ std::optional<Options> parse_options(int argc, char** argv) {
       ++i;
       break;
     }
-    if (a == "--top" || a == "--root" || a == "--exempt") {
+    if (a == "--top" || a == "--root" || a == "--exempt" || a == "--region" || a == "--port") {
       auto v = value(argv[i]);
       if (!v) return std::nullopt;
+      if (a == "--region") o.regions.push_back(*v);
+      if (a == "--port") o.ports.insert(*v);
       if (a == "--top") o.tops.push_back(*v);
       if (a == "--root") o.roots.push_back(canon(*v));
       if (a == "--exempt") o.exempts.push_back(canon(*v));
@@ -290,10 +304,15 @@ std::optional<Options> parse_options(int argc, char** argv) {
     }
   }
   for (; i < argc; ++i) o.compiler_args.emplace_back(argv[i]);
+  if (o.regions.empty() != o.ports.empty()) {
+    std::fprintf(stderr, "voxcast_synth_lint: --region and --port go together\n");
+    return std::nullopt;
+  }
   if (o.tops.empty() || o.roots.empty() || o.compiler_args.empty()) {
     std::fprintf(stderr,
                  "usage: voxcast_synth_lint --top NAME [--top NAME...] --root DIR [--root DIR...]\n"
-                 "                          [--exempt PATH...] [--verbose] -- COMPILER_ARGS... FILE\n");
+                 "                          [--exempt PATH...] [--region NAME --port NAME...]\n"
+                 "                          [--verbose] -- COMPILER_ARGS... FILE\n");
     return std::nullopt;
   }
   return o;
@@ -462,6 +481,7 @@ class Linter {
     const std::size_t before = report_.size();
     check_interface(top);
     std::vector<CXCursor> reachable = reach(top);
+    for (const std::string& region : opts_.regions) check_region(top, region);
     check_recursion(reachable);
     for (CXCursor fn : reachable) check_class_of(fn);
     if (opts_.verbose) list(reachable);
@@ -713,8 +733,105 @@ class Linter {
     }
   }
 
+  // --- sample-loop-ports ---------------------------------------------------
+  static bool is_pointer(CXType t) {
+    return clang_getCanonicalType(t).kind == CXType_Pointer;
+  }
+  static bool is_reference(CXType t) {
+    const CXTypeKind k = clang_getCanonicalType(t).kind;
+    return k == CXType_LValueReference || k == CXType_RValueReference;
+  }
+  static void collect(CXCursor c, CXCursorKind kind, std::vector<CXCursor>& out) {
+    if (c.kind == kind) out.push_back(c);
+    for (CXCursor k : children(c)) collect(k, kind, out);
+  }
+
+  // The calls of `region` in the top's body, and what each passes.
+  void check_region(CXCursor top, const std::string& region) {
+    std::vector<CXCursor> params;
+    for (int i = 0; i < clang_Cursor_getNumArguments(top); ++i)
+      params.push_back(clang_Cursor_getArgument(top, static_cast<unsigned>(i)));
+    auto top_param = [&](CXCursor decl) -> std::optional<CXCursor> {
+      for (CXCursor p : params)
+        if (clang_equalCursors(p, decl)) return p;
+      return std::nullopt;
+    };
+    std::vector<CXCursor> calls;
+    collect(top, CXCursor_CallExpr, calls);
+    int found = 0;
+    for (CXCursor call : calls) {
+      const CXCursor callee = clang_getCursorReferenced(call);
+      if (clang_Cursor_isNull(callee) || spelling(callee) != region) continue;
+      ++found;
+      const int n = clang_Cursor_getNumArguments(call);
+      for (int i = 0; i < n; ++i) check_region_argument(clang_Cursor_getArgument(call, static_cast<unsigned>(i)), i, region, top_param);
+      for (CXCursor fn : reach(node_of(callee))) check_globals(fn, region);
+    }
+    if (found == 0)
+      report_.add(where(top), "sample-loop-ports",
+                  "the top does not call the region '" + region + "' (--region)");
+  }
+
+  template <class TopParam>
+  void check_region_argument(CXCursor arg, int index, const std::string& region, TopParam& top_param) {
+    const std::string which = "argument " + std::to_string(index + 1) + " of '" + region + "'";
+    const CXCursor bare = strip_implicit(arg);
+    if (bare.kind == CXCursor_DeclRefExpr) {
+      const auto p = top_param(clang_getCursorReferenced(bare));
+      if (p && is_pointer(clang_getCursorType(*p)) && opts_.ports.count(spelling(*p))) return;
+    }
+    std::vector<CXCursor> refs;
+    collect(arg, CXCursor_DeclRefExpr, refs);
+    for (CXCursor ref : refs) {
+      const CXCursor decl = clang_getCursorReferenced(ref);
+      const CXType t = clang_getCursorType(decl);
+      if (const auto p = top_param(decl)) {
+        if (is_pointer(t))
+          report_.add(where(ref), "sample-loop-ports",
+                      which + " reaches the top's pointer parameter '" + spelling(*p) +
+                          "', which is not a port of the sample loop (--port)");
+      } else if (decl.kind == CXCursor_VarDecl && (is_pointer(t) || is_reference(t))) {
+        report_.add(where(ref), "sample-loop-ports",
+                    which + " passes the local '" + spelling(decl) + "' of type '" +
+                        type_spelling(t) + "', which may alias external memory");
+      }
+    }
+    if (is_pointer(clang_getCursorType(arg)) && bare.kind != CXCursor_DeclRefExpr)
+      report_.add(where(arg), "sample-loop-ports",
+                  which + " is a pointer computed in the top, not one of the ports");
+  }
+
+  // A function of the region that reads or writes a mutable variable at
+  // namespace scope (or a static data member): memory outside the region's
+  // arguments. Static locals are the function's own (on-chip) state.
+  void check_globals(CXCursor fn, const std::string& region) {
+    if (!checked(fn) || !globals_checked_.insert(fn).second) return;
+    std::vector<CXCursor> refs;
+    collect(fn, CXCursor_DeclRefExpr, refs);
+    for (CXCursor ref : refs) {
+      const CXCursor decl = clang_getCursorReferenced(ref);
+      if (decl.kind != CXCursor_VarDecl) continue;
+      const CXCursorKind scope = clang_getCursorSemanticParent(decl).kind;
+      const bool global = scope == CXCursor_TranslationUnit || scope == CXCursor_Namespace ||
+                          scope == CXCursor_StructDecl || scope == CXCursor_ClassDecl ||
+                          scope == CXCursor_ClassTemplate;
+      if (!global || is_constexpr_var(tu_, decl) ||
+          clang_isConstQualifiedType(clang_getCursorType(decl)))
+        continue;
+      report_.add(where(ref), "sample-loop-ports",
+                  "'" + name_of(fn) + "' in the region '" + region + "' uses the global '" +
+                      qualified_name(decl) + "'");
+    }
+  }
+
   // --- loops ---------------------------------------------------------------
   void check_loop(CXCursor loop, CXCursor fn) {
+    // A defaulted special member (implicit or `= default`) copies a member
+    // array element by element: the compiler's loop over a fixed size. Seen
+    // with vendor types whose copy is not trivial (ap_fixed).
+    if ((fn.kind == CXCursor_CXXMethod || fn.kind == CXCursor_Constructor) &&
+        clang_CXXMethod_isDefaulted(fn))
+      return;
     if (has_own_tripcount(loop) || has_static_bound(loop)) return;
     report_.add(where(loop), "static-loop-bound",
                 "loop without a compile-time bound or HLS LOOP_TRIPCOUNT pragma" + in(fn));
@@ -911,6 +1028,7 @@ class Linter {
   std::vector<Pragma> pragmas_;
   CursorMap<Function> graph_;
   CursorSet classes_seen_;
+  CursorSet globals_checked_;
   Report report_;
   std::size_t last_violations_ = 0;
 };
