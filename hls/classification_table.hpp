@@ -71,10 +71,9 @@ struct ClassEntry {
 };
 
 // The table: 2^tf_addr_bits entries, one per address, in one SRAM (read-only for
-// the datapath; written by the host between frames). The top-level kernel packs
-// an entry into one word and binds the array to a single-port RAM
-// (`#pragma HLS AGGREGATE variable=<table>.entry compact=bit` and
-// `#pragma HLS BIND_STORAGE variable=<table>.entry type=ram_1p impl=bram`):
+// the datapath; written by the load phase between frames). The synthesized top
+// (hls/vizard2_synth_top.cpp) packs an entry into one word and binds the array
+// to a single-port block RAM (AGGREGATE compact=bit, BIND_STORAGE ram_1p):
 // one read per sample, as the paper's two 32-bit SRAMs read in parallel.
 template <class P>
 struct ClassificationTable {

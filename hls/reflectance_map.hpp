@@ -119,20 +119,17 @@ struct ReflectanceRegisters {
 // Diffuse and specular tables, `entries` each. Nearest mode: 6 rm_res^2 entries,
 // indexed face·rm_res² + iv·rm_res + iu (§5.3). Bilinear mode: 6 (rm_res+1)^2
 // corner entries, indexed face·(rm_res+1)² + j·(rm_res+1) + i (§5.5). Two
-// independent memories, both read in the same cycle: the top-level kernel binds
-// each to its own RAM (`#pragma HLS BIND_STORAGE variable=<map>.diffuse
-// type=ram_1p impl=bram`, and likewise .specular), written by the host only
-// between frames.
+// independent memories, both read in the same cycle, written by the load phase
+// between frames; the synthesized top (hls/vizard2_synth_top.cpp) binds each
+// to its own dual-port block RAM.
 //
-// Bilinear mode reads four entries of each table per sample, the corners (i, j),
-// (i+1, j), (i, j+1), (i+1, j+1) of one cell: their corner parities (i&1, j&1)
-// are the four distinct pairs, so a vendor tool banks each table four ways by
-// corner parity (as §3.3 banks the voxels eight ways by voxel parity): bank
-// (i&1) | (j&1)<<1 holds corner (i, j) at word face·h² + (j>>1)·h + (i>>1) with
-// h = ceil((rm_res+1)/2), one single-port RAM each, and the four reads happen in
-// one cycle behind a 4x4 crossbar (in Vitis: the table declared as
-// [6][rm_res+1][rm_res+1] with `ARRAY_PARTITION cyclic factor=2` on the last two
-// dimensions). The C model keeps the flat array the host loads.
+// Bilinear mode reads four entries of each table per sample, k, k+1, k+side and
+// k+side+1 (the corners of one cell, k = its (i, j) corner). Split cyclically
+// in two halves by the parity of the index, two of the four fall in each half
+// whatever side's parity (side even: k, k+side in one, k+1, k+side+1 in the
+// other; side odd: k, k+side+1 and k+1, k+side), so two dual-port halves serve
+// the four reads in one clock: the top's `ARRAY_PARTITION cyclic factor=2` and
+// `BIND_STORAGE ram_2p` (factor 1 in nearest mode, one read per table).
 template <class P>
 struct ReflectanceMap {
   typename ReflectanceParams<P>::entry_t diffuse[ReflectanceParams<P>::entries];
