@@ -60,7 +60,10 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
   nlohmann::json j;
   j["scene"] = scene.origin;
   j["engine"] = to_string(s.engine);
-  if (s.engine != Engine::Ref) j["profile"] = scene.precision_name;
+  if (s.engine != Engine::Ref) {
+    j["profile"] = scene.precision_name;
+    j["hazards"] = hazards_json(s.hazards);
+  }
   j["volume"] = {{"source", s.volume_source}, {"dims", s.dims}, {"bits", s.bits}};
   j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
                 {"mode", ref::to_string(scene.render.mode)},
@@ -153,8 +156,8 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
   std::optional<bittrue::VoxelMemory> memory;
   if (options.engine != Engine::Ref) {
     check_fixed_point(scene, sv, options.engine == Engine::Hls || options.engine == Engine::Rtl);
-    for (const std::string& w : fixed_point_warnings(scene, volume))
-      std::cerr << "voxcast: warning: " << w << "\n";
+    s.hazards = precision_hazards(scene, volume);
+    report_hazards(s.hazards, options.strict, std::cerr);
     memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
   }
 

@@ -7,6 +7,7 @@
 
 #include "refmodel/render/raycaster.hpp"
 #include "refmodel/scene/scene.hpp"
+#include "cosim/warnings.hpp"
 
 namespace voxcast::cosim {
 
@@ -23,6 +24,9 @@ struct RenderOptions {
   // "START:END" of each frame (empty: the whole frame).
   std::string vcd_path = {};
   std::string vcd_window = {};
+  // --strict: refuse a scene the precision guard finds hazards in
+  // (cosim/warnings.hpp; PrecisionHazardError, exit status 6).
+  bool strict = false;
 };
 
 // What one `render` did, for the summary line and the JSON report.
@@ -40,6 +44,7 @@ struct RenderSummary {
   double rtl_fps = 0.0;
   double rtl_row_hit_rate = 0.0;  // summed over every frame and eye
   std::uint64_t vcd_commands = 0;  // SDRAM commands inside the VCD window
+  std::vector<Hazard> hazards;     // the precision guard's (fixed-point engines)
   std::vector<std::string> written;
 };
 

@@ -67,7 +67,7 @@ nlohmann::json accuracy_json(const Accuracy& a) {
 }  // namespace
 
 CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
-                      const TruthSettings& truth_settings) {
+                      const TruthSettings& truth_settings, bool strict) {
   if (scene.algorithm == ref::Algorithm::Heidelberg) return run_cosim_heidelberg(scene, out_dir);
   CosimResult r;
   r.truth = truth_settings;
@@ -79,8 +79,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   // is then not established and the report says so.
   r.hls_ran = hls_supports(scene.precision);
   check_fixed_point(scene, sv, false);
-  for (const std::string& w : fixed_point_warnings(scene, sv.volume))
-    std::cerr << "voxcast: warning: " << w << "\n";
+  r.hazards = precision_hazards(scene, sv.volume);
+  report_hazards(r.hazards, strict, std::cerr);
   const ref::Volume& volume = sv.volume;
   const ref::GradientField& gradients = sv.gradients;
 
@@ -192,6 +192,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
     j["note"] = "the hls engine is not compiled for this profile (" + hls_supported_profiles() +
                 "); the accuracy figures are the bit-true engine's";
   j["profile"] = scene.precision_name;
+  j["hazards"] = hazards_json(r.hazards);
   j["profile_widths"] = nlohmann::json::object();
   for (const ProfileField& f : profile_fields()) j["profile_widths"][f.name] = scene.precision.*f.member;
   const nlohmann::json acc = accuracy_json(r.accuracy);

@@ -10,6 +10,7 @@
 #include "cosim/truth.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/scene/scene.hpp"
+#include "cosim/warnings.hpp"
 
 namespace voxcast::cosim {
 
@@ -32,6 +33,7 @@ struct CosimResult {
   Accuracy truth_accuracy;    // hls (bit-true if !hls_ran) against the truth
   Mismatch mismatch;          // when !bit_exact
   std::uint64_t samples_float = 0, samples_hls = 0;
+  std::vector<Hazard> hazards;  // the precision guard's (cosim/warnings.hpp)
   double seconds_float = 0, seconds_bittrue = 0, seconds_hls = 0, seconds_rtl = 0, seconds_truth = 0;
   std::vector<std::string> written;
 };
@@ -39,8 +41,9 @@ struct CosimResult {
 // Writes DIR/report.json, DIR/layers.exr (float, hls and difference layers)
 // and DIR/{float,hls,bittrue,diff,truth}.png. report.json's "truth" section
 // holds the design's accuracy against the truth (cosim/truth.hpp).
+// strict: refuse a scene with precision hazards (cosim/warnings.hpp).
 CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
-                      const TruthSettings& truth = {});
+                      const TruthSettings& truth = {}, bool strict = false);
 
 void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r);
 

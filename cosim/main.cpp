@@ -49,6 +49,8 @@ int main(int argc, char** argv) {
       ->required();
   render->add_option("--report", render_opts.report_json, "Write a JSON report here");
   std::string engine_name = "ref";
+  render->add_flag("--strict", render_opts.strict,
+                   "Refuse a scene with precision hazards (exit status 6) instead of warning");
   render->add_option("--engine", engine_name,
                      "ref (double), bittrue (bit-true reference), hls, or rtl (cycle model)")
       ->capture_default_str();
@@ -68,6 +70,9 @@ int main(int argc, char** argv) {
   cosim->add_option("--out", cosim_out, "Output folder (report.json, layers.exr, PNGs)")->required();
   add_set_option(*cosim, cosim_sets);
   voxcast::cosim::TruthSettings cosim_truth;
+  bool cosim_strict = false;
+  cosim->add_flag("--strict", cosim_strict,
+                  "Refuse a scene with precision hazards (exit status 6) instead of warning");
   cosim->add_option("--truth-oversampling", cosim_truth.oversampling,
                     "Oversampling of the truth (the float reference) for report.json's truth section")
       ->capture_default_str();
@@ -254,7 +259,7 @@ int main(int argc, char** argv) {
       voxcast::cosim::print_summary(std::cout, scene, summary);
     } else if (*cosim) {
       const auto scene = voxcast::ref::load_scene_file(cosim_scene, cosim_sets);
-      const auto r = voxcast::cosim::run_cosim(scene, cosim_out, cosim_truth);
+      const auto r = voxcast::cosim::run_cosim(scene, cosim_out, cosim_truth, cosim_strict);
       voxcast::cosim::print_cosim_summary(std::cout, scene, r);
       if (!r.bit_exact) {
         std::cerr << "voxcast: " << r.mismatch.engine << " differs from "
@@ -341,6 +346,9 @@ int main(int argc, char** argv) {
       const auto summary = voxcast::cosim::run_render(scene, opts);
       voxcast::cosim::print_summary(std::cout, scene, summary);
     }
+  } catch (const voxcast::cosim::PrecisionHazardError& e) {
+    std::cerr << "voxcast: " << e.what() << "\n";
+    return 6;
   } catch (const voxcast::Error& e) {
     std::cerr << "voxcast: " << e.what() << "\n";
     return 1;

@@ -23,6 +23,7 @@
 #include "cosim/sweep_plot.hpp"
 #include "cosim/truth.hpp"
 #include "cosim/stopwatch.hpp"
+#include "cosim/warnings.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 #include "refmodel/precision/presets.hpp"
@@ -48,6 +49,19 @@ std::vector<Cell> measure_accuracy_cells(const PointContext& p) {
           Cell::num(a.pct_within_1lsb),
           std::isnan(a.ssim) ? Cell::na("SSIM needs an image of at least 11x11 pixels")
                              : Cell::num(a.ssim)};
+}
+
+// The precision guard's verdict on the point (cosim/warnings.hpp): a point
+// whose error is hazard-limited says so next to its accuracy.
+std::vector<Cell> measure_hazard_cells(const PointContext& p) {
+  const std::vector<Hazard> hazards = precision_hazards(p.scene, p.volume.volume);
+  double worst = 0.0;
+  std::string keys;
+  for (const Hazard& h : hazards) {
+    worst = std::max(worst, h.worst_lsb);
+    keys += (keys.empty() ? "" : " ") + h.key;
+  }
+  return {Cell::num(static_cast<double>(hazards.size())), Cell::num(worst), Cell::txt(keys)};
 }
 
 std::vector<Cell> measure_rtl_cells(const PointContext& p) {
@@ -286,6 +300,12 @@ const std::vector<ColumnGroup>& column_groups() {
         {"pct_within_1lsb", Kind::Number, "%", "pixels whose three channels are within 1 LSB"},
         {"ssim", Kind::Number, "", "mean SSIM of the colour channels against the truth"}},
        measure_accuracy_cells},
+      {"hazards",
+       {{"hazards", Kind::Number, "", "precision hazards the guard predicts (cosim/warnings.hpp)"},
+        {"hazard_worst_lsb", Kind::Number, "LSB",
+         "the largest predicted worst-case error of a hazard (0: none)"},
+        {"hazard_keys", Kind::Text, "", "the scene keys of the hazards, space-separated"}},
+       measure_hazard_cells},
       {"rtl",
        {{"rtl_fps", Kind::Number, "frames/s", "the cycle model's frames per second at 100 MHz"},
         {"rtl_ns_per_sample", Kind::Number, "ns", "the cycle model's ns per composited sample"},

@@ -5,7 +5,11 @@
 #include <cstddef>
 #include <iomanip>
 #include <limits>
+#include <ostream>
 #include <sstream>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/bittrue/quantize.hpp"
@@ -14,78 +18,339 @@
 namespace voxcast::cosim {
 namespace {
 
-// The table entry holds U(opacity_correct(alpha, step), alpha_bits)
-// (bittrue::make_class_table): 0 exactly when the step opacity is below half an
-// LSB, 2^-(alpha_bits + 1) (Q_RND rounds a tie up, to one LSB).
-void alpha_warnings(const ref::Scene& scene, std::vector<std::string>& out) {
-  const int ab = scene.precision.alpha_bits;
+double out_max(const PrecisionProfile& p) { return std::ldexp(1.0, p.out_bits) - 1.0; }
+// The smallest worst case reported, in output LSB.
+double threshold(const PrecisionProfile& p) { return kHazardFraction * out_max(p); }
+
+std::string fmt(double x, int digits = 3) {
+  std::ostringstream s;
+  s << std::setprecision(digits) << x;
+  return s.str();
+}
+
+// The most samples one ray takes: the volume's world diagonal at the scene's
+// step (world = index · normalised spacing, step = 1/oversampling).
+double max_ray_samples(const ref::Scene& scene, const ref::Volume& volume) {
+  const glm::dvec3 extent = glm::dvec3(volume.dims[0], volume.dims[1], volume.dims[2]) *
+                            ref::normalised_spacing(volume);
+  return std::ceil(glm::length(extent) * scene.render.oversampling);
+}
+
+// The largest difference of the opacity a ray accumulates over L consecutive
+// samples of one material, 1 - (1 - a)^L, between step opacities a and b, over
+// L = 1 .. n: what one material's rounding can move a ray at most. The
+// difference is unimodal in L (maximum at L* = ln(ln(1-b)/ln(1-a)) /
+// ln((1-a)/(1-b))), so the maximum is at floor(L*) or ceil(L*), clamped to [1, n].
+double slab_opacity_difference(double a, double b, double n) {
+  auto opacity = [](double x, double l) { return 1.0 - std::pow(1.0 - x, l); };
+  auto diff = [&](double l) { return std::abs(opacity(a, l) - opacity(b, l)); };
+  if (a == b) return 0.0;
+  if (a >= 1.0 || b >= 1.0 || a <= 0.0 || b <= 0.0) return diff(1.0) > diff(n) ? diff(1.0) : diff(n);
+  const double la = std::log1p(-a), lb = std::log1p(-b);
+  const double star = std::log(lb / la) / (la - lb);
+  double best = std::max(diff(1.0), diff(n));
+  for (double l : {std::floor(star), std::ceil(star)})
+    if (l >= 1.0 && l <= n) best = std::max(best, diff(l));
+  return best;
+}
+
+// ---- Opacity (§4.2): the table holds U(1 - (1 - alpha)^step, alpha_bits) -----------------
+//
+// alpha-vanishes: 0 exactly when the step opacity is below half an LSB (Q_RND
+// rounds a tie up, to one LSB); a slab of the material then loses all of its
+// opacity, up to 1 - (1 - x)^n of the channel.
+// alpha-rounding: the step opacity x rounds to q = Q_RND(x, alpha_bits); over
+// L samples of the material a ray's opacity differs by
+// |(1 - x)^L - (1 - q)^L| (slab_opacity_difference), at most a whole channel
+// when x is a few LSB and L long.
+void alpha_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vector<Hazard>& out) {
+  const PrecisionProfile& p = scene.precision;
+  const int ab = p.alpha_bits;
   const double step = 1.0 / scene.render.oversampling;
   const double half_lsb = std::ldexp(1.0, -(ab + 1));
+  const double n = max_ray_samples(scene, volume);
   for (std::size_t i = 0; i < scene.tf_points.size(); ++i) {
-    const double alpha = scene.tf_points[i].alpha;
-    if (!(alpha > 0.0)) continue;
-    const double step_opacity = ref::opacity_correct(alpha, step);
-    if (bittrue::u_frac(step_opacity, ab) > 0.0) continue;
+    const ref::TfPoint& pt = scene.tf_points[i];
+    const double alpha = pt.alpha;
+    if (!(alpha > 0.0) || alpha >= 1.0) continue;
+    const double x = ref::opacity_correct(alpha, step);
+    const double q = bittrue::u_frac(x, ab);
+    // The output's alpha channel carries the opacity itself (the colour
+    // channels carry it times the colour, at most 1).
+    const double worst = out_max(p) * slab_opacity_difference(x, q, n);
+    Hazard h;
+    h.key = "classification.points[" + std::to_string(i) + "].alpha";
+    h.value = alpha;
+    h.width = "precision.alpha_bits = " + std::to_string(ab);
+    h.worst_lsb = worst;
     std::ostringstream w;
-    w << "classification.points[" << i << "] alpha " << alpha << " vanishes at oversampling "
-      << scene.render.oversampling << ": its step opacity " << std::setprecision(2) << step_opacity
-      << " is below half an LSB of precision.alpha_bits = " << ab << " (" << std::setprecision(3)
-      << half_lsb << ")";
-    out.push_back(w.str());
+    if (q == 0.0) {
+      h.kind = "alpha-vanishes";
+      w << h.key << " " << alpha << " vanishes at oversampling "
+        << scene.render.oversampling << ": its step opacity " << std::setprecision(2) << x
+        << " is below half an LSB of precision.alpha_bits = " << ab << " (" << std::setprecision(3)
+        << half_lsb << ")";
+    } else {
+      if (worst < threshold(p)) continue;
+      h.kind = "alpha-rounding";
+      w << h.key << " " << alpha << " at oversampling "
+        << scene.render.oversampling << ": its step opacity " << std::setprecision(3) << x
+        << " rounds to " << q << " (" << std::setprecision(2) << (q / x - 1.0) * 100.0
+        << " %) in precision.alpha_bits = " << ab;
+    }
+    w << "; worst case " << fmt(worst) << " LSB of an output channel";
+    h.message = w.str();
+    if (h.kind == "alpha-vanishes" || worst >= threshold(p)) out.push_back(std::move(h));
   }
 }
 
-// Binary classification: point i classifies the values in [lo_i, hi_i) (from its
-// value up to the next point's; the first point also everything below, the last
-// everything above). The float reference classifies the continuous interpolated
-// values, 0 .. max_stored; the table sees only its entries, at stored values
-// k·spacing, k = 0 .. 2^tf_addr_bits - 1, spacing = 2^(value_bits - tf_addr_bits -
-// value_shift) (§3.4, §4.2), and a sample reads the nearest one (ties up), so the
-// entries a sample can read lie below max_stored + spacing/2.
-void table_warnings(const ref::Scene& scene, const ref::Volume& volume,
-                    std::vector<std::string>& out) {
+// ---- Classification table (§4.1-4.2): entry k at stored value k·spacing ----------------------
+struct TableGeometry {
+  double spacing;     // stored values between entries
+  double last_entry;  // the last entry's stored value
+  double data_hi;     // the volume's largest stored value
+};
+
+TableGeometry table_geometry(const PrecisionProfile& p, const ref::Volume& volume) {
+  const double spacing =
+      std::ldexp(1.0, p.value_bits - p.tf_addr_bits - bittrue::value_shift(p, volume));
+  return {spacing, (std::ldexp(1.0, p.tf_addr_bits) - 1.0) * spacing,
+          static_cast<double>(volume.max_stored())};
+}
+
+// The stored value of the entry a sample of stored value v reads: the nearest
+// (ties up), clamped to the last entry (class_address, §4.1).
+double entry_of(const TableGeometry& g, double v) {
+  return std::min(std::floor(v / g.spacing + 0.5) * g.spacing, g.last_entry);
+}
+
+// The scene's point index of stored point i (in_stored_units reverses the
+// order for a negative slope).
+std::size_t scene_index(const ref::Volume& volume, std::size_t i, std::size_t count) {
+  return volume.slope < 0 ? count - 1 - i : i;
+}
+
+// tf-no-entry (binary interpolation): point i classifies the values in [lo_i,
+// hi_i) (from its value up to the next point's; the first point also
+// everything below, the last everything above); a sample reads the nearest
+// entry, so when no entry lies in that range inside the data, every such
+// sample reads a neighbour's material: the point vanishes (worst case: its
+// whole opacity).
+void table_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vector<Hazard>& out) {
   if (scene.tf_interpolation != ref::TfInterpolation::Binary) return;
   const PrecisionProfile& p = scene.precision;
   const ref::TransferFunction tf = ref::stored_transfer_function(scene, volume);
   const std::vector<ref::TfPoint>& pts = tf.points();  // stored units, sorted
-  const double spacing =
-      std::ldexp(1.0, p.value_bits - p.tf_addr_bits - bittrue::value_shift(p, volume));
-  const double last_entry = (std::ldexp(1.0, p.tf_addr_bits) - 1.0) * spacing;
-  const double data_hi = volume.max_stored();
+  const TableGeometry g = table_geometry(p, volume);
   const double inf = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (!(pts[i].alpha > 0.0)) continue;
     const double lo = i == 0 ? -inf : pts[i].value;
     const double hi = i + 1 == pts.size() ? inf : pts[i + 1].value;  // exclusive
     // Not in the float image either: an empty interval, or none of it in the data range.
-    if (!(lo < hi) || lo > data_hi || hi <= 0.0) continue;
+    if (!(lo < hi) || lo > g.data_hi || hi <= 0.0) continue;
     // The first entry at or above lo: readable, and below hi?
-    const double entry = std::max(0.0, std::ceil(lo / spacing)) * spacing;
-    if (entry <= last_entry && entry < hi && entry <= data_hi + spacing / 2) continue;
-    // The scene's point index (in_stored_units reverses the order for a negative slope).
-    const std::size_t index = volume.slope < 0 ? pts.size() - 1 - i : i;
+    const double entry = std::max(0.0, std::ceil(lo / g.spacing)) * g.spacing;
+    if (entry <= g.last_entry && entry < hi && entry <= g.data_hi + g.spacing / 2) continue;
+    const std::size_t index = scene_index(volume, i, pts.size());
     const std::size_t next = volume.slope < 0 ? index - 1 : index + 1;
+    const ref::TfPoint& sp = scene.tf_points[index];
+    Hazard h;
+    h.kind = "tf-no-entry";
+    h.key = "classification.points[" + std::to_string(index) + "].value";
+    h.value = sp.value;
+    h.width = "precision.tf_addr_bits = " + std::to_string(p.tf_addr_bits);
+    h.worst_lsb = out_max(p) * std::min(1.0, sp.alpha);  // the alpha channel: the whole opacity
     std::ostringstream w;
-    w << "classification.points[" << index << "] value " << scene.tf_points[index].value
-      << " vanishes: no classification-table entry lies between it and ";
-    if (hi <= data_hi)
+    w << h.key << " " << sp.value << " vanishes: no classification-table entry lies between it and ";
+    if (hi <= g.data_hi)
       w << "classification.points[" << next << "] value " << scene.tf_points[next].value;
     else
-      w << "the data's largest value " << volume.to_physical(data_hi);
-    w << " (precision.tf_addr_bits = " << p.tf_addr_bits << ": entries every " << spacing
-      << " stored values, the last at " << volume.to_physical(last_entry) << ")";
-    out.push_back(w.str());
+      w << "the data's largest value " << volume.to_physical(g.data_hi);
+    w << " (precision.tf_addr_bits = " << p.tf_addr_bits << ": entries every " << g.spacing
+      << " stored values, the last at " << volume.to_physical(g.last_entry) << "); worst case "
+      << fmt(h.worst_lsb) << " LSB of an output channel";
+    h.message = w.str();
+    out.push_back(std::move(h));
   }
+}
+
+// tf-between-entries (ramp interpolation): the float reference classifies the
+// continuous value v, the table the entry nearest to it. Along a ramp the
+// difference is at most the slope times half a spacing: the ordinary
+// quantization of the table, not reported. A feature narrower than the
+// spacing — a spike or a notch whose control points fall strictly between
+// two entries — is a shape the table cannot hold: the entries on either side
+// see only the chord between them. For each control point strictly between
+// entries k and k+1, the hazard is how far the transfer function there is
+// from that chord; its worst case is what a ray that stays at the point's
+// value loses against the entry it reads, over the samples it spends there
+// (slab_opacity_difference of the step opacities, and the colour).
+void between_entry_hazards(const ref::Scene& scene, const ref::Volume& volume,
+                           std::vector<Hazard>& out) {
+  if (scene.tf_interpolation != ref::TfInterpolation::Ramp) return;
+  const PrecisionProfile& p = scene.precision;
+  const ref::TransferFunction tf = ref::stored_transfer_function(scene, volume);
+  const std::vector<ref::TfPoint>& pts = tf.points();
+  const TableGeometry g = table_geometry(p, volume);
+  const double step = 1.0 / scene.render.oversampling;
+  const double n = max_ray_samples(scene, volume);
+  // What a ray loses at value v reading `got` instead of `want`, in output LSB.
+  auto loss = [&](const ref::Classified& want, const ref::Classified& got) {
+    const double a = ref::opacity_correct(want.alpha, step);
+    const double b = ref::opacity_correct(got.alpha, step);
+    // The alpha channel carries the opacity difference itself; a colour
+    // channel that, or the colour difference times the opacity.
+    const glm::dvec3 dc = glm::abs(want.color - got.color);
+    const double tint = std::max({dc.r, dc.g, dc.b}) * std::max(want.alpha, got.alpha);
+    return out_max(p) * std::max(slab_opacity_difference(a, b, n), tint);
+  };
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double vp = pts[i].value;
+    if (vp < 0.0 || vp > g.data_hi || vp >= g.last_entry) continue;
+    const double k0 = std::floor(vp / g.spacing) * g.spacing, k1 = k0 + g.spacing;
+    if (vp == k0) continue;  // on an entry: the table holds it
+    const ref::Classified lo = tf.classify(k0), hi = tf.classify(k1), at = tf.classify(vp);
+    const double f = (vp - k0) / g.spacing;
+    ref::Classified chord = at;
+    chord.alpha = lo.alpha + f * (hi.alpha - lo.alpha);
+    chord.color = lo.color + f * (hi.color - lo.color);
+    if (loss(at, chord) < threshold(p)) continue;  // the ramp's own slope: ordinary
+    const double worst = loss(at, tf.classify(entry_of(g, vp)));
+    if (worst < threshold(p)) continue;
+    const std::size_t index = scene_index(volume, i, pts.size());
+    const ref::TfPoint& sp = scene.tf_points[index];
+    Hazard h;
+    h.kind = "tf-between-entries";
+    h.key = "classification.points[" + std::to_string(index) + "].value";
+    h.value = sp.value;
+    h.width = "precision.tf_addr_bits = " + std::to_string(p.tf_addr_bits);
+    h.worst_lsb = worst;
+    std::ostringstream w;
+    w << h.key << " " << sp.value
+      << " lies between classification-table entries (precision.tf_addr_bits = "
+      << p.tf_addr_bits << ": entries every "
+      << std::abs(volume.to_physical(g.spacing) - volume.to_physical(0.0))
+      << " data units), which see only the chord across it: a feature narrower than an entry "
+         "is lost; worst case "
+      << fmt(worst) << " LSB of an output channel";
+    h.message = w.str();
+    out.push_back(std::move(h));
+  }
+}
+
+// ---- Reflectance map (§5.4): entries U(D), U(S) saturate at 2^rm_int_bits - 2^-rm_frac_bits ----
+//
+// D(N) = sum of I·max(0, N·L) over the lights, S(N) = sum of I·max(0, N·H)^n:
+// their largest values over the normals are at the lights' own directions (for
+// D, at the normalised sum of the lights that face a common normal: checked on
+// every table entry's normal and at each light and halfway vector). Where D or
+// S exceeds the largest entry, the shaded intensity ka + kd·D + ks·S is short
+// by kd·(D - max) + ks·(S - max), and a channel by colour times that (both
+// sides clamped to 1 as the shader does), for an opaque sample.
+void reflectance_hazards(const ref::Scene& scene, std::vector<Hazard>& out) {
+  if (scene.render.mode != ref::RenderMode::Shaded || scene.lights.empty()) return;
+  const PrecisionProfile& p = scene.precision;
+  const double cap = std::ldexp(1.0, p.rm_int_bits) - std::ldexp(1.0, -p.rm_frac_bits);
+  // The camera only turns headlights; the worst case over views is the
+  // worst case over normals, which every view direction gives alike.
+  const ref::ShadingSetup shading =
+      ref::make_shading_setup(scene.lights, glm::dvec3(0.0, 0.0, -1.0), scene.material.shininess);
+  std::vector<glm::dvec3> normals;
+  for (const auto& t : shading.lights) {
+    normals.push_back(t.light);
+    if (glm::length(t.halfway) > 0.0) normals.push_back(t.halfway);
+  }
+  glm::dvec3 sum(0.0);
+  for (const auto& t : shading.lights) sum += t.intensity * t.light;
+  if (glm::length(sum) > 0.0) normals.push_back(glm::normalize(sum));
+  const int res = 64;  // a fine cube map of normals besides
+  for (int face = 0; face < 6; ++face)
+    for (int iv = 0; iv < res; ++iv)
+      for (int iu = 0; iu < res; ++iu) {
+        glm::dvec3 nrm(0.0);
+        const int m = face / 2, a = m == 0 ? 1 : 0, b = m == 2 ? 1 : 2;
+        nrm[m] = (face & 1) ? -1.0 : 1.0;
+        nrm[a] = (iu + 0.5) * 2.0 / res - 1.0;
+        nrm[b] = (iv + 0.5) * 2.0 / res - 1.0;
+        normals.push_back(glm::normalize(nrm));
+      }
+  double d_max = 0.0, s_max = 0.0, worst = 0.0;
+  const ref::Material& mat = scene.material;
+  double colour = 0.0;
+  for (const ref::TfPoint& pt : scene.tf_points)
+    if (pt.alpha > 0.0) colour = std::max({colour, pt.color.r, pt.color.g, pt.color.b});
+  for (const glm::dvec3& nrm : normals) {
+    const ref::Reflectance r = ref::reflectance(shading, nrm);
+    d_max = std::max(d_max, r.diffuse);
+    s_max = std::max(s_max, r.specular);
+    const double exact = std::min(1.0, colour * (mat.ka + mat.kd * r.diffuse + mat.ks * r.specular));
+    const double held = std::min(
+        1.0, colour * (mat.ka + mat.kd * std::min(r.diffuse, cap) + mat.ks * std::min(r.specular, cap)));
+    worst = std::max(worst, out_max(p) * (exact - held));
+  }
+  if (worst < threshold(p)) return;
+  // The key: the light that adds most to the largest diffuse (or specular) term.
+  std::size_t brightest = 0;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].intensity > scene.lights[brightest].intensity) brightest = i;
+  double total = 0.0;
+  for (const ref::Light& l : scene.lights) total += l.intensity;
+  Hazard h;
+  h.kind = "rm-saturation";
+  h.key = "lights[" + std::to_string(brightest) + "].intensity";
+  h.value = scene.lights[brightest].intensity;
+  h.width = "precision.rm_int_bits = " + std::to_string(p.rm_int_bits);
+  h.worst_lsb = worst;
+  std::ostringstream w;
+  w << h.key << " " << h.value << " (" << scene.lights.size() << " light"
+    << (scene.lights.size() == 1 ? "" : "s") << ", intensities summing to " << total
+    << "): the reflectance map reaches diffuse " << fmt(d_max) << ", specular " << fmt(s_max)
+    << ", but precision.rm_int_bits = " << p.rm_int_bits << " and rm_frac_bits = "
+    << p.rm_frac_bits << " hold at most " << fmt(cap, 6) << ": shading saturates; worst case "
+    << fmt(worst) << " LSB of an output channel";
+  h.message = w.str();
+  out.push_back(std::move(h));
 }
 
 }  // namespace
 
+std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume& volume) {
+  std::vector<Hazard> out;
+  if (scene.render.mode == ref::RenderMode::Mip) return out;
+  alpha_hazards(scene, volume, out);
+  table_hazards(scene, volume, out);
+  between_entry_hazards(scene, volume, out);
+  reflectance_hazards(scene, out);
+  return out;
+}
+
 std::vector<std::string> fixed_point_warnings(const ref::Scene& scene, const ref::Volume& volume) {
   std::vector<std::string> out;
-  if (scene.render.mode == ref::RenderMode::Mip) return out;
-  alpha_warnings(scene, out);
-  table_warnings(scene, volume, out);
+  for (const Hazard& h : precision_hazards(scene, volume)) out.push_back(h.message);
   return out;
+}
+
+nlohmann::json hazards_json(const std::vector<Hazard>& hazards) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const Hazard& h : hazards)
+    j.push_back({{"kind", h.kind},
+                 {"key", h.key},
+                 {"value", h.value},
+                 {"width", h.width},
+                 {"worst_lsb", h.worst_lsb},
+                 {"message", h.message}});
+  return j;
+}
+
+void report_hazards(const std::vector<Hazard>& hazards, bool strict, std::ostream& err) {
+  if (strict && !hazards.empty()) {
+    std::string what = "--strict: " + std::to_string(hazards.size()) + " precision hazard" +
+                       (hazards.size() == 1 ? "" : "s") + ":";
+    for (const Hazard& h : hazards) what += "\n  " + h.message;
+    throw PrecisionHazardError(what);
+  }
+  for (const Hazard& h : hazards) err << "voxcast: warning: " << h.message << "\n";
 }
 
 }  // namespace voxcast::cosim

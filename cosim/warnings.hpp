@@ -1,34 +1,69 @@
-// Warnings about a scene the fixed-point design renders, but not as the float
-// reference does: an input that is valid, yet falls below what the profile's
-// widths can represent, so a material vanishes from every fixed-point image.
-// Unlike the errors of check_fixed_point (a width that cannot hold a value at
-// all), the render proceeds; the command prints each warning as one line on
-// stderr, "voxcast: warning: ...".
+// The precision guard: the hazards a scene's profile causes, predicted at load
+// time from the scene, the volume and the widths, before anything renders.
+// Each is an input that is valid, and that the float reference renders, but
+// that the fixed-point design renders far from it without failing: a material
+// that vanishes, a feature of the transfer function that no table entry
+// holds, a step opacity that rounds by a large factor, a reflectance map that
+// saturates. Unlike the errors of check_fixed_point (a width that cannot hold a
+// value at all), the render proceeds; each hazard is one line on stderr,
+// "voxcast: warning: ...", and is carried in the JSON reports; with --strict
+// the command refuses the scene instead (PrecisionHazardError, exit status 6).
+//
+// A hazard names the scene key that causes it, the key's value, the width that
+// cannot hold it and the predicted worst-case error of an output channel in
+// LSB of precision.out_bits: what one ray can lose at most, from the closed
+// forms below (docs/extremes.md, "The precision guard"). A hazard is reported
+// when that worst case reaches kHazardFraction of the output range; below it
+// the effect is within the ordinary quantization error of the widths.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
+#include "refmodel/error.hpp"
 #include "refmodel/scene/scene.hpp"
 #include "refmodel/volume/volume.hpp"
 
 namespace voxcast::cosim {
 
-// One line per transfer-function control point whose material vanishes:
-//  - its opacity-corrected alpha (docs/pipeline.md §4.2: U(1 - (1 - alpha)^step,
-//    alpha_bits) with step = 1/render.oversampling) rounds to 0 although alpha > 0:
-//      classification.points[2] alpha 0.001 vanishes at oversampling 16: its step
-//      opacity 6.3e-05 is below half an LSB of precision.alpha_bits = 8 (0.00195)
-//  - binary interpolation: the values it classifies (from its value up to the next
-//    point's) meet the volume's data range but hold no classification-table entry
-//    (§4.2: entry i sits at i·2^(value_bits - tf_addr_bits) in the value field), so
-//    every such sample reads a neighbouring point's entry:
-//      classification.points[1] value 65535 vanishes: no classification-table entry
-//      lies between it and the data's largest value 65535 (precision.tf_addr_bits =
-//      14: entries every 4 stored values, the last at 65532)
-// Empty for a MIP scene (no classification in the datapath). Reads the scene's
-// profile (scene.precision), its points, its oversampling, and the volume's
-// stored-value range and scaling.
+// The smallest predicted worst case that is reported: a sixteenth of the
+// output range (16 LSB at out_bits = 8). Below it lie the ordinary rounding
+// effects of a narrow profile (vizard2's 8-bit opacities round a step opacity
+// by up to a few tens of percent), which docs/accuracy.md measures per scene;
+// the cases the guard exists for cost from tens of LSB to the whole channel.
+inline constexpr double kHazardFraction = 1.0 / 16.0;
+
+struct Hazard {
+  // "alpha-vanishes" | "alpha-rounding" | "tf-no-entry" | "tf-between-entries" | "rm-saturation"
+  std::string kind;
+  std::string key;       // the scene key, e.g. "classification.points[2].alpha", "lights[1].intensity"
+  double value = 0.0;    // the key's value
+  std::string width;     // the width, e.g. "precision.alpha_bits = 8"
+  double worst_lsb = 0;  // predicted worst-case error of one output channel, LSB of out_bits
+  std::string message;   // the whole warning, one line
+};
+
+// Every hazard of the scene's profile, in the order: control points (alpha,
+// table entries), then lights. Empty for a MIP scene except what MIP reads
+// (nothing here: MIP has no classification, shading or opacity).
+std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume& volume);
+
+// The hazards' messages (the lines the commands print).
 std::vector<std::string> fixed_point_warnings(const ref::Scene& scene, const ref::Volume& volume);
+
+// [{kind, key, value, width, worst_lsb, message}, ...] for report.json and the sweep.
+nlohmann::json hazards_json(const std::vector<Hazard>& hazards);
+
+// --strict: a scene with hazards is refused.
+class PrecisionHazardError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Prints each hazard as "voxcast: warning: <message>" on `err`; with `strict`
+// and at least one hazard, throws PrecisionHazardError listing them instead.
+void report_hazards(const std::vector<Hazard>& hazards, bool strict, std::ostream& err);
 
 }  // namespace voxcast::cosim

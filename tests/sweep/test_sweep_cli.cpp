@@ -168,7 +168,8 @@ TEST(Sweep, InfeasiblePointsProgressAndPlots) {
   const std::string csv = text_of(d / "results.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "precision.value_bits,render.oversampling,status,engine,psnr_db,max_err_lsb,"
-            "mean_err_lsb,rms_err_lsb,pct_within_1lsb,ssim,rtl_fps,rtl_ns_per_sample,rtl_cycles,"
+            "mean_err_lsb,rms_err_lsb,pct_within_1lsb,ssim,hazards,hazard_worst_lsb,hazard_keys,"
+            "rtl_fps,rtl_ns_per_sample,rtl_cycles,"
             "part,luts,ffs,dsps,brams,part_pct,pareto_psnr_fps,pareto_psnr_resources,notes");
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
     for (const char* f : {"psnr_vs_fps.png", "psnr_vs_fps.svg", "psnr_vs_render_oversampling.png",
