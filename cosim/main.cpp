@@ -13,6 +13,7 @@
 #include "cosim/flythrough.hpp"
 #include "cosim/paper.hpp"
 #include "cosim/regress.hpp"
+#include "cosim/scene_fuzz.hpp"
 #include "cosim/report.hpp"
 #include "cosim/sweep.hpp"
 #include "cosim/tune.hpp"
@@ -223,6 +224,17 @@ int main(int argc, char** argv) {
   report->add_option("--md", report_md_path, "Write the report as Markdown here (default: stdout)");
   add_set_option(*report, report_sets);
 
+  // fuzz-scenes --seed S --scenes N [--size PX] [--out DIR]
+  voxcast::cosim::SceneFuzzOptions fuzz_opts;
+  CLI::App* fuzz_scenes = app.add_subcommand(
+      "fuzz-scenes", "Random valid scenes through float, bit-true and hls: engines must agree, and "
+                     "the error must stay within the precision guard's bound (exit 7 on findings)");
+  fuzz_scenes->add_option("--seed", fuzz_opts.seed, "Seed of the scene stream")->capture_default_str();
+  fuzz_scenes->add_option("--scenes", fuzz_opts.scenes, "Scenes to run")->capture_default_str();
+  fuzz_scenes->add_option("--size", fuzz_opts.image_size, "Image width and height in pixels")
+      ->capture_default_str();
+  fuzz_scenes->add_option("--out", fuzz_opts.out_dir, "Folder for the findings' scene files");
+
   // tune SCENE --target-psnr DB
   std::string tune_scene;
   std::vector<std::string> tune_vary;
@@ -340,6 +352,10 @@ int main(int argc, char** argv) {
       const auto r = voxcast::cosim::run_tune(scene, tune_opts);
       voxcast::cosim::print_tune(std::cout, scene, tune_opts, r);
       if (!r.found) return 5;
+    } else if (*fuzz_scenes) {
+      const auto r = voxcast::cosim::run_scene_fuzz(fuzz_opts);
+      voxcast::cosim::print_scene_fuzz(std::cout, fuzz_opts, r);
+      if (!r.findings.empty()) return 7;
     } else if (*demo) {
       const auto scene = voxcast::ref::default_scene(demo_sets);
       voxcast::cosim::RenderOptions opts{{demo_out + ".png", demo_out + ".exr"}, demo_out + ".json"};

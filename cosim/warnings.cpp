@@ -277,17 +277,19 @@ void reflectance_hazards(const ref::Scene& scene, std::vector<Hazard>& out) {
       }
   double d_max = 0.0, s_max = 0.0, worst = 0.0;
   const ref::Material& mat = scene.material;
-  double colour = 0.0;
+  // The colours the materials have (each channel of each visible point): the
+  // clamp at 1 hides the loss for a bright colour and not for a dim one.
+  std::vector<double> colours;
   for (const ref::TfPoint& pt : scene.tf_points)
-    if (pt.alpha > 0.0) colour = std::max({colour, pt.color.r, pt.color.g, pt.color.b});
+    if (pt.alpha > 0.0) colours.insert(colours.end(), {pt.color.r, pt.color.g, pt.color.b});
   for (const glm::dvec3& nrm : normals) {
     const ref::Reflectance r = ref::reflectance(shading, nrm);
     d_max = std::max(d_max, r.diffuse);
     s_max = std::max(s_max, r.specular);
-    const double exact = std::min(1.0, colour * (mat.ka + mat.kd * r.diffuse + mat.ks * r.specular));
-    const double held = std::min(
-        1.0, colour * (mat.ka + mat.kd * std::min(r.diffuse, cap) + mat.ks * std::min(r.specular, cap)));
-    worst = std::max(worst, out_max(p) * (exact - held));
+    const double exact = mat.ka + mat.kd * r.diffuse + mat.ks * r.specular;
+    const double held = mat.ka + mat.kd * std::min(r.diffuse, cap) + mat.ks * std::min(r.specular, cap);
+    for (double c : colours)
+      worst = std::max(worst, out_max(p) * (std::min(1.0, c * exact) - std::min(1.0, c * held)));
   }
   if (worst < threshold(p)) return;
   // The key: the light that adds most to the largest diffuse (or specular) term.

@@ -33,7 +33,7 @@ namespace voxcast::cosim {
 // effects of a narrow profile (vizard2's 8-bit opacities round a step opacity
 // by up to a few tens of percent), which docs/accuracy.md measures per scene;
 // the cases the guard exists for cost from tens of LSB to the whole channel.
-inline constexpr double kHazardFraction = 1.0 / 16.0;
+inline constexpr double kHazardFraction = 1.0 / 8.0;
 
 struct Hazard {
   // "alpha-vanishes" | "alpha-rounding" | "tf-no-entry" | "tf-between-entries" | "rm-saturation"
