@@ -18,11 +18,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "rtl_model/bench/calibration.hpp"
 #include "rtl_model/pci/pci_bus.hpp"
@@ -33,26 +35,27 @@
 namespace voxcast::test {
 namespace VOXCAST_UNITY_ID {
 
-// A figure of docs/performance.md and its tolerance. ns per sample within
-// 0.1%: a change that moves only the pipeline's fill and drain (any unit
-// latency halved or doubled) moves the 64^3 frames by at most 0.07% and the
-// 256^3 frames by less, while each change of the memory's or the issue's
-// throughput we tried moves some frame by more (§3.1). The row-hit rate within
-// 0.1 percentage point (the doc prints it to 0.1%; latencies move it by at most
-// 0.03 points).
+// A figure of docs/performance.md and its tolerances. The frames are
+// deterministic; a tolerance admits the changes that leave this page's figures
+// as they are (the pipeline's unit latencies, which move fill and drain) and
+// refuses changes of throughput. ns per sample within 0.1% (0.15% for row-hit
+// issue, whose choice of ray depends on which rays are ready, so latencies move
+// it more: up to 0.096% with every latency doubled); the row-hit rate within 0.1
+// percentage point (the doc prints it to 0.1%; latencies move it by at most 0.03
+// points). RtlCalibration.Sensitivity below checks both ways, §3.1 lists it.
 struct Figures {
   std::uint64_t samples = 0;  // composited: exact (the hls engine's count)
   double ns_per_sample = 0.0;
   double row_hit_rate = 0.0;
+  double ns_tolerance = 0.001;  // relative
 };
 
-constexpr double kNsTolerance = 0.001;   // relative
 constexpr double kHitTolerance = 0.001;  // absolute
 
 void expect_figures(const rtl::bench::CalibrationResult& r, const Figures& doc) {
   const rtl::RtlStats& s = r.stats;
   EXPECT_EQ(s.samples, doc.samples) << r.name << "\n" << s;
-  EXPECT_NEAR(s.ns_per_sample(), doc.ns_per_sample, kNsTolerance * doc.ns_per_sample)
+  EXPECT_NEAR(s.ns_per_sample(), doc.ns_per_sample, doc.ns_tolerance * doc.ns_per_sample)
       << r.name << "\n" << s;
   EXPECT_NEAR(s.row_hit_rate(), doc.row_hit_rate, kHitTolerance) << r.name << "\n" << s;
 }
@@ -98,15 +101,26 @@ struct SmallCase {
   Figures recorded;
 };
 
+void PrintTo(const SmallCase& c, std::ostream* os) { *os << c.name; }
+
+const SmallCase kSmallCases[] = {
+    {"baseline_perspective", Organisation::kBaseline, 0, {99'292, 26.648, 0.6338}},
+    {"baseline_z", Organisation::kBaseline, 3, {262'144, 35.2266, 0.4997}},
+    {"row_hit_perspective", Organisation::kRowHit, 0, {99'292, 10.369, 0.9804, 0.0015}},
+    {"row_hit_z", Organisation::kRowHit, 3, {262'144, 10.1104, 0.9970, 0.0015}},
+};
+
+rtl::RtlConfig small_config(Organisation o) {
+  return o == Organisation::kBaseline ? rtl::vizard2_baseline() : rtl::bench::row_hit_goal_config();
+}
+
 class SmallCalibration : public ::testing::TestWithParam<SmallCase> {};
 
 constexpr int kSmall = 64;
 
 TEST_P(SmallCalibration, MatchesTheRecordedFigures) {
   const SmallCase& c = GetParam();
-  const rtl::RtlConfig config = c.organisation == Organisation::kBaseline
-                                    ? rtl::vizard2_baseline()
-                                    : rtl::bench::row_hit_goal_config();
+  const rtl::RtlConfig config = small_config(c.organisation);
   const auto points = rtl::bench::baseline_points(kSmall);
   const rtl::bench::CalibrationResult r =
       rtl::bench::run_calibration(points[static_cast<std::size_t>(c.view)], config);
@@ -149,14 +163,97 @@ TEST_P(SmallCalibration, MatchesTheRecordedFigures) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    At64, SmallCalibration,
-    ::testing::Values(
-        SmallCase{"baseline_perspective", Organisation::kBaseline, 0, {99'292, 26.648, 0.6338}},
-        SmallCase{"baseline_z", Organisation::kBaseline, 3, {262'144, 35.2266, 0.4997}},
-        SmallCase{"row_hit_perspective", Organisation::kRowHit, 0, {99'292, 10.369, 0.9804}},
-        SmallCase{"row_hit_z", Organisation::kRowHit, 3, {262'144, 10.1104, 0.9970}}),
-    [](const auto& param_info) { return std::string(param_info.param.name); });
+INSTANTIATE_TEST_SUITE_P(At64, SmallCalibration, ::testing::ValuesIn(kSmallCases),
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
+
+// ---- What the tolerance separates (opt-in) ---------------------------------------------------
+//
+// The four frames above under changes to the card, each against the frames
+// unchanged: changes that only move the pipeline's fill and drain (unit
+// latencies, CAS latency, buffers deeper than the in-flight requests) must stay
+// within the tolerance on every frame; changes of throughput (a buffer or a
+// queue shorter than the memory's latency, slower row commands, fewer rays in
+// flight or worse ray order for row-hit issue) must leave it on some frame.
+// VOXCAST_CALIBRATION=sensitivity (about 15 s of CPU); docs/performance.md §3.1.
+struct Variant {
+  const char* what;
+  bool throughput;  // must move some frame beyond the tolerance; else none may
+  void (*apply)(rtl::RtlConfig&);
+};
+
+TEST(RtlCalibration, Sensitivity) {
+  const char* env = std::getenv("VOXCAST_CALIBRATION");
+  if (env == nullptr || (std::string(env) != "1" && std::string(env) != "sensitivity"))
+    GTEST_SKIP() << "set VOXCAST_CALIBRATION=sensitivity to run the tolerance's experiment";
+  const Variant variants[] = {
+      {"every unit latency doubled", false,
+       [](rtl::RtlConfig& c) {
+         c.pipeline.latency.ray_setup = 48;
+         c.pipeline.latency.address = 4;
+         c.pipeline.latency.interpolation = 8;
+         c.pipeline.latency.classification = 4;
+         c.pipeline.latency.shading = 8;
+       }},
+      {"every unit latency at 1 (ray set-up 13)", false,
+       [](rtl::RtlConfig& c) {
+         c.pipeline.latency.ray_setup = 13;
+         c.pipeline.latency.address = 1;
+         c.pipeline.latency.interpolation = 1;
+         c.pipeline.latency.classification = 1;
+         c.pipeline.latency.shading = 1;
+       }},
+      {"address latency 3", false, [](rtl::RtlConfig& c) { c.pipeline.latency.address = 3; }},
+      {"CAS latency 3 (PC100 CL3)", false,
+       [](rtl::RtlConfig& c) { c.pipeline.dimm.timing = rtl::sdram::presets::pc100_cl3(); }},
+      {"sample buffer 16", false, [](rtl::RtlConfig& c) { c.pipeline.sample_buffer = 16; }},
+      {"return FIFO 4", false, [](rtl::RtlConfig& c) { c.pipeline.controller.return_depth = 4; }},
+      {"sample buffer 8", true, [](rtl::RtlConfig& c) { c.pipeline.sample_buffer = 8; }},
+      {"controller queue 4", true, [](rtl::RtlConfig& c) { c.pipeline.controller.queue_depth = 4; }},
+      {"tRCD 30 ns", true, [](rtl::RtlConfig& c) { c.pipeline.dimm.timing.tRCD_ns = 30.0; }},
+      {"tRP 30 ns", true, [](rtl::RtlConfig& c) { c.pipeline.dimm.timing.tRP_ns = 30.0; }},
+      {"ray slots 24", true, [](rtl::RtlConfig& c) { c.pipeline.ray_slots = 24; }},
+      {"ray slots 48", true, [](rtl::RtlConfig& c) { c.pipeline.ray_slots = 48; }},
+      {"tiles of 8", true, [](rtl::RtlConfig& c) { c.pipeline.tile = 8; }},
+      {"bypass limit 64", true, [](rtl::RtlConfig& c) { c.pipeline.issue_bypass_limit = 64; }},
+  };
+  const auto points = rtl::bench::baseline_points(kSmall);
+  struct Frame {
+    const char* name;
+    rtl::RtlConfig config;
+    const rtl::bench::CalibrationPoint* point;
+    rtl::RtlStats unchanged;
+    double ns_tolerance;
+  };
+  std::vector<Frame> frames;
+  for (const SmallCase& c : kSmallCases) {
+    const rtl::RtlConfig config = small_config(c.organisation);
+    const auto* point = &points[static_cast<std::size_t>(c.view)];
+    frames.push_back({c.name, config, point, rtl::bench::run_calibration(*point, config).stats,
+                      c.recorded.ns_tolerance});
+  }
+  std::cout << "ns per sample and row hits, change against the unchanged frame:\n";
+  for (const Variant& v : variants) {
+    double largest = 0.0;
+    std::cout << v.what << ":";
+    for (const Frame& f : frames) {
+      rtl::RtlConfig config = f.config;
+      v.apply(config);
+      const rtl::RtlStats s = rtl::bench::run_calibration(*f.point, config).stats;
+      const double ns = s.ns_per_sample() / f.unchanged.ns_per_sample() - 1.0;
+      const double hits = s.row_hit_rate() - f.unchanged.row_hit_rate();
+      largest = std::max({largest, std::abs(ns) / f.ns_tolerance, std::abs(hits) / kHitTolerance});
+      std::cout << "  " << f.name << " " << std::showpos << 100.0 * ns << "% ("
+                << 100.0 * hits << " points)" << std::noshowpos;
+    }
+    std::cout << "\n";
+    // largest: the largest change in units of the tolerance.
+    if (v.throughput) {
+      EXPECT_GT(largest, 1.0) << v.what << ": no frame left the tolerance";
+    } else {
+      EXPECT_LT(largest, 1.0) << v.what << ": a fill-and-drain change left the tolerance";
+    }
+  }
+}
 
 // ---- The 256^3 calibration (opt-in) ----------------------------------------------------------
 
