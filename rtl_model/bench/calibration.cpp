@@ -9,31 +9,45 @@
 #include "refmodel/scene/scene_toml.hpp"
 #include "refmodel/volume/gradients.hpp"
 #include "refmodel/volume/loaders.hpp"
+#include "rtl_model/scene_config.hpp"
 
 namespace voxcast::rtl::bench {
 namespace {
 
-// The 256^3 view of the default scene (scenes/default.toml, eye and centre
-// scaled from its 128^3 phantom), the whole volume, 1 sample per voxel, no ERT.
-ref::Scene baseline(const ref::Overrides& more) {
+// The default scene's view (scenes/default.toml, 128^3: eye (63.5, -150, 260),
+// centre the volume centre) scaled to an n^3 phantom seen in n x n pixels: the
+// eye at centre + (0, -427.5, 392.5) n/256, so every size sees the same share
+// of the volume and each pixel covers the same share of a voxel; the whole
+// volume, 1 sample per voxel, no ERT. n = 256 is the documented calibration.
+ref::Scene baseline(int n, const ref::Overrides& more) {
+  const double c = (n - 1) / 2.0, k = n / 256.0;
+  const std::string size = std::to_string(n), last = std::to_string(n - 1);
   ref::Overrides o = {"precision.profile=vizard2",
-                      "volume.source=phantom:shepp-logan?size=256",
+                      "volume.source=phantom:shepp-logan?size=" + size,
                       "volume.crop.lo=[0, 0, 0]",
-                      "volume.crop.hi=[255, 255, 255]",
-                      "camera.eye=[127.5, -300.0, 520.0]",
-                      "camera.center=[127.5, 127.5, 127.5]",
-                      "render.width=256",
-                      "render.height=256",
+                      "volume.crop.hi=[" + last + ", " + last + ", " + last + "]",
+                      "camera.eye=[" + std::to_string(c) + ", " + std::to_string(c - 427.5 * k) +
+                          ", " + std::to_string(c + 392.5 * k) + "]",
+                      "camera.center=[" + std::to_string(c) + ", " + std::to_string(c) + ", " +
+                          std::to_string(c) + "]",
+                      "render.width=" + size,
+                      "render.height=" + size,
                       "render.oversampling=1",
                       "render.ert_threshold=1"};
   o.insert(o.end(), more.begin(), more.end());
   return ref::default_scene(o);
 }
 
-ref::Overrides parallel_along(int axis) {
-  const char* eye[3] = {"camera.eye=[-300.0, 127.5, 127.5]", "camera.eye=[127.5, -300.0, 127.5]",
-                        "camera.eye=[127.5, 127.5, -300.0]"};
-  return {"camera.projection=parallel", "camera.height=256", eye[axis],
+// Parallel, view height n, the eye 427.5 n/256 before the centre on `axis`.
+ref::Overrides parallel_along(int n, int axis) {
+  const double c = (n - 1) / 2.0;
+  std::string eye[3];
+  for (int a = 0; a < 3; ++a) {
+    std::string p[3] = {std::to_string(c), std::to_string(c), std::to_string(c)};
+    p[a] = std::to_string(c - 427.5 * n / 256.0);
+    eye[a] = "camera.eye=[" + p[0] + ", " + p[1] + ", " + p[2] + "]";
+  }
+  return {"camera.projection=parallel", "camera.height=" + std::to_string(n), eye[axis],
           axis == 2 ? "camera.up=[0.0, 1.0, 0.0]" : "camera.up=[0.0, 0.0, 1.0]"};
 }
 
@@ -45,17 +59,26 @@ ref::Scene endoscopy(double oversampling) {
 
 }  // namespace
 
-std::vector<CalibrationPoint> calibration_points() {
+std::vector<CalibrationPoint> baseline_points(int size) {
+  if (size < 2) throw Error("calibration: baseline frames need a volume of at least 2^3");
+  const std::string n = std::to_string(size), pre = "baseline-" + n + "-";
   return {
-      {"baseline-256-perspective",
-       "paper: 256^3 at one sample per voxel, 5 fps, 12.7 ns per sample", baseline({})},
-      {"baseline-256-x", "as baseline, parallel along +x", baseline(parallel_along(0))},
-      {"baseline-256-y", "as baseline, parallel along +y", baseline(parallel_along(1))},
-      {"baseline-256-z", "as baseline, parallel along +z", baseline(parallel_along(2))},
-      {"endoscopy-ert-1x", "paper: opaque endoscopic views with ERT well above 20 fps",
-       endoscopy(1.0)},
-      {"endoscopy-ert-4x", "paper: with 4x oversampling about 5 fps", endoscopy(4.0)},
+      {pre + "perspective",
+       size == 256 ? "paper: 256^3 at one sample per voxel, 5 fps, 12.7 ns per sample"
+                   : "as baseline-256-perspective at " + n + "^3, " + n + "x" + n + " pixels",
+       baseline(size, {})},
+      {pre + "x", "as baseline, parallel along +x", baseline(size, parallel_along(size, 0))},
+      {pre + "y", "as baseline, parallel along +y", baseline(size, parallel_along(size, 1))},
+      {pre + "z", "as baseline, parallel along +z", baseline(size, parallel_along(size, 2))},
   };
+}
+
+std::vector<CalibrationPoint> calibration_points() {
+  std::vector<CalibrationPoint> points = baseline_points(256);
+  points.push_back({"endoscopy-ert-1x", "paper: opaque endoscopic views with ERT well above 20 fps",
+                    endoscopy(1.0)});
+  points.push_back({"endoscopy-ert-4x", "paper: with 4x oversampling about 5 fps", endoscopy(4.0)});
+  return points;
 }
 
 CalibrationPoint calibration_point(const std::string& name) {
@@ -65,6 +88,14 @@ CalibrationPoint calibration_point(const std::string& name) {
     known += (known.empty() ? "" : ", ") + p.name;
   }
   throw Error("unknown calibration point '" + name + "' (known: " + known + ")");
+}
+
+RtlConfig row_hit_goal_config() {
+  return rtl_config(ref::default_scene({"rtl.issue=row-hit", "rtl.issue_bypass_limit=4096",
+                                        "rtl.ray_slots=32", "rtl.traversal=tiles", "rtl.tile=4",
+                                        "rtl.layout=bricked-swizzled", "rtl.scheduler=lookahead",
+                                        "rtl.auto_precharge=true"})
+                        .rtl);
 }
 
 double CalibrationResult::samples_per_host_second() const {

@@ -29,6 +29,16 @@ struct CalibrationPoint {
 std::vector<CalibrationPoint> calibration_points();
 // One of the above by name; throws voxcast::Error naming the known ones.
 CalibrationPoint calibration_point(const std::string& name);
+// The four baseline frames at another size: baseline-N-perspective, -x, -y,
+// -z on an N^3 phantom in N x N pixels, the same view scaled (N = 256 gives
+// the frames above; tests/rtl/test_rtl_calibration.cpp runs N = 64 in the
+// normal suite, docs/performance.md §3.1). Throws voxcast::Error for N < 2.
+std::vector<CalibrationPoint> baseline_points(int size);
+
+// The organisation that meets the 10.5 ns goal (docs/performance.md §7): row-hit
+// issue (bypass limit 4096) over 32 ray slots in tiles of 4 x 4, the
+// bricked-swizzled layout, look-ahead activation, READ with auto precharge.
+RtlConfig row_hit_goal_config();
 
 struct CalibrationResult {
   std::string name;

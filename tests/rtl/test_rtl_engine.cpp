@@ -54,7 +54,8 @@ TEST_P(RtlBitExact, EveryPresetAndMode) {
       EXPECT_EQ(r.stats.samples, fs.samples) << what;
       EXPECT_EQ(r.stats.rays, 400u) << what;
       EXPECT_GT(lit(bt), bt.pixels.size() / 20) << what;
-      EXPECT_GT(r.stats.cycles, 0) << what;
+      // One READ per DIMM per sample on a command bus of one command a clock.
+      EXPECT_GE(r.stats.cycles, r.stats.samples_issued) << what;
     }
 }
 
