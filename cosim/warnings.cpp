@@ -7,6 +7,7 @@
 #include <limits>
 #include <ostream>
 #include <sstream>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -54,6 +55,17 @@ double slab_opacity_difference(double a, double b, double n) {
   return best;
 }
 
+Hazard make_hazard(std::string kind, std::string key, double value, std::string width,
+                   double worst_lsb) {
+  Hazard h;
+  h.kind = std::move(kind);
+  h.key = std::move(key);
+  h.value = value;
+  h.width = std::move(width);
+  h.worst_lsb = worst_lsb;
+  return h;
+}
+
 // ---- Opacity (§4.2): the table holds U(1 - (1 - alpha)^step, alpha_bits) -----------------
 //
 // alpha-vanishes: 0 exactly when the step opacity is below half an LSB (Q_RND
@@ -78,11 +90,8 @@ void alpha_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vect
     // The output's alpha channel carries the opacity itself (the colour
     // channels carry it times the colour, at most 1).
     const double worst = out_max(p) * slab_opacity_difference(x, q, n);
-    Hazard h;
-    h.key = "classification.points[" + std::to_string(i) + "].alpha";
-    h.value = alpha;
-    h.width = "precision.alpha_bits = " + std::to_string(ab);
-    h.worst_lsb = worst;
+    Hazard h = make_hazard("", "classification.points[" + std::to_string(i) + "].alpha", alpha,
+                           "precision.alpha_bits = " + std::to_string(ab), worst);
     std::ostringstream w;
     if (q == 0.0) {
       h.kind = "alpha-vanishes";
@@ -155,12 +164,9 @@ void table_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vect
     const std::size_t index = scene_index(volume, i, pts.size());
     const std::size_t next = volume.slope < 0 ? index - 1 : index + 1;
     const ref::TfPoint& sp = scene.tf_points[index];
-    Hazard h;
-    h.kind = "tf-no-entry";
-    h.key = "classification.points[" + std::to_string(index) + "].value";
-    h.value = sp.value;
-    h.width = "precision.tf_addr_bits = " + std::to_string(p.tf_addr_bits);
-    h.worst_lsb = out_max(p) * std::min(1.0, sp.alpha);  // the alpha channel: the whole opacity
+    Hazard h = make_hazard("tf-no-entry", "classification.points[" + std::to_string(index) + "].value",
+                           sp.value, "precision.tf_addr_bits = " + std::to_string(p.tf_addr_bits),
+                           out_max(p) * std::min(1.0, sp.alpha));  // the alpha channel: the whole opacity
     std::ostringstream w;
     w << h.key << " " << sp.value << " vanishes: no classification-table entry lies between it and ";
     if (hi <= g.data_hi)
@@ -220,12 +226,9 @@ void between_entry_hazards(const ref::Scene& scene, const ref::Volume& volume,
     if (worst < threshold(p)) continue;
     const std::size_t index = scene_index(volume, i, pts.size());
     const ref::TfPoint& sp = scene.tf_points[index];
-    Hazard h;
-    h.kind = "tf-between-entries";
-    h.key = "classification.points[" + std::to_string(index) + "].value";
-    h.value = sp.value;
-    h.width = "precision.tf_addr_bits = " + std::to_string(p.tf_addr_bits);
-    h.worst_lsb = worst;
+    Hazard h = make_hazard("tf-between-entries",
+                           "classification.points[" + std::to_string(index) + "].value", sp.value,
+                           "precision.tf_addr_bits = " + std::to_string(p.tf_addr_bits), worst);
     std::ostringstream w;
     w << h.key << " " << sp.value
       << " lies between classification-table entries (precision.tf_addr_bits = "
@@ -298,12 +301,9 @@ void reflectance_hazards(const ref::Scene& scene, std::vector<Hazard>& out) {
     if (scene.lights[i].intensity > scene.lights[brightest].intensity) brightest = i;
   double total = 0.0;
   for (const ref::Light& l : scene.lights) total += l.intensity;
-  Hazard h;
-  h.kind = "rm-saturation";
-  h.key = "lights[" + std::to_string(brightest) + "].intensity";
-  h.value = scene.lights[brightest].intensity;
-  h.width = "precision.rm_int_bits = " + std::to_string(p.rm_int_bits);
-  h.worst_lsb = worst;
+  Hazard h = make_hazard("rm-saturation", "lights[" + std::to_string(brightest) + "].intensity",
+                         scene.lights[brightest].intensity,
+                         "precision.rm_int_bits = " + std::to_string(p.rm_int_bits), worst);
   std::ostringstream w;
   w << h.key << " " << h.value << " (" << scene.lights.size() << " light"
     << (scene.lights.size() == 1 ? "" : "s") << ", intensities summing to " << total

@@ -197,38 +197,38 @@ void march_stage(const GeometryRegisters<P>& geometry,
 
 // ---- 3. Interpolation (§3.3-3.5): the eight bank ports and the crossbar --------------------------
 
+// The eight voxel banks, each its own AXI port of the top (two per DIMM
+// bundle): the region's only external memory besides the frame buffer.
+template <class P>
+struct BankPorts {
+  using word_t = typename InterpolationParams<P>::packed_word_t;
+  const word_t* bank0;
+  const word_t* bank1;
+  const word_t* bank2;
+  const word_t* bank3;
+  const word_t* bank4;
+  const word_t* bank5;
+  const word_t* bank6;
+  const word_t* bank7;
+};
+
 // §3.3: every bank read at its own port, at its own address, in every access.
 template <class P>
-void read_bank_ports(const typename InterpolationParams<P>::packed_word_t* bank0,
-                     const typename InterpolationParams<P>::packed_word_t* bank1,
-                     const typename InterpolationParams<P>::packed_word_t* bank2,
-                     const typename InterpolationParams<P>::packed_word_t* bank3,
-                     const typename InterpolationParams<P>::packed_word_t* bank4,
-                     const typename InterpolationParams<P>::packed_word_t* bank5,
-                     const typename InterpolationParams<P>::packed_word_t* bank6,
-                     const typename InterpolationParams<P>::packed_word_t* bank7,
-                     const BankAccess<P>& a, VoxelWordFx<P> word[8]) {
+void read_bank_ports(const BankPorts<P>& ports, const BankAccess<P>& a, VoxelWordFx<P> word[8]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
-  word[0] = unpack_voxel_word<P>(bank0[a.addr[0].to_uint64()]);
-  word[1] = unpack_voxel_word<P>(bank1[a.addr[1].to_uint64()]);
-  word[2] = unpack_voxel_word<P>(bank2[a.addr[2].to_uint64()]);
-  word[3] = unpack_voxel_word<P>(bank3[a.addr[3].to_uint64()]);
-  word[4] = unpack_voxel_word<P>(bank4[a.addr[4].to_uint64()]);
-  word[5] = unpack_voxel_word<P>(bank5[a.addr[5].to_uint64()]);
-  word[6] = unpack_voxel_word<P>(bank6[a.addr[6].to_uint64()]);
-  word[7] = unpack_voxel_word<P>(bank7[a.addr[7].to_uint64()]);
+  word[0] = unpack_voxel_word<P>(ports.bank0[a.addr[0].to_uint64()]);
+  word[1] = unpack_voxel_word<P>(ports.bank1[a.addr[1].to_uint64()]);
+  word[2] = unpack_voxel_word<P>(ports.bank2[a.addr[2].to_uint64()]);
+  word[3] = unpack_voxel_word<P>(ports.bank3[a.addr[3].to_uint64()]);
+  word[4] = unpack_voxel_word<P>(ports.bank4[a.addr[4].to_uint64()]);
+  word[5] = unpack_voxel_word<P>(ports.bank5[a.addr[5].to_uint64()]);
+  word[6] = unpack_voxel_word<P>(ports.bank6[a.addr[6].to_uint64()]);
+  word[7] = unpack_voxel_word<P>(ports.bank7[a.addr[7].to_uint64()]);
 }
 
 template <class P>
-void interpolation_stage(const typename InterpolationParams<P>::packed_word_t* bank0,
-                         const typename InterpolationParams<P>::packed_word_t* bank1,
-                         const typename InterpolationParams<P>::packed_word_t* bank2,
-                         const typename InterpolationParams<P>::packed_word_t* bank3,
-                         const typename InterpolationParams<P>::packed_word_t* bank4,
-                         const typename InterpolationParams<P>::packed_word_t* bank5,
-                         const typename InterpolationParams<P>::packed_word_t* bank6,
-                         const typename InterpolationParams<P>::packed_word_t* bank7, int width,
-                         fifo<AccessToken<P>>& accesses, fifo<SampleToken<P>>& samples) {
+void interpolation_stage(const BankPorts<P>& ports, int width, fifo<AccessToken<P>>& accesses,
+                         fifo<SampleToken<P>>& samples) {
   int ended = 0;
   [[gnu::unused]] interpolation_loop : while (ended < width) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
@@ -238,7 +238,7 @@ void interpolation_stage(const typename InterpolationParams<P>::packed_word_t* b
     o.flags = t.flags;
     if (t.flags.valid) {
       VoxelWordFx<P> word[8], corner[8];
-      read_bank_ports<P>(bank0, bank1, bank2, bank3, bank4, bank5, bank6, bank7, t.access, word);
+      read_bank_ports<P>(ports, t.access, word);
       crossbar<P>(word, t.access.parity, corner);
       o.s = interpolation_processor<P>(corner, t.access.fq);
     }
@@ -424,16 +424,8 @@ void load_frame_state(const FrameState<P, U>& src, FrameState<P, U>& dst) {
 // One image row through the six processes. `f` is the on-chip state (the
 // top's load phase filled it); the banks and fb are the top's AXI ports.
 template <class P, class U>
-void render_row_streamed(const FrameState<P, U>& f,
-                         const typename InterpolationParams<P>::packed_word_t* bank0,
-                         const typename InterpolationParams<P>::packed_word_t* bank1,
-                         const typename InterpolationParams<P>::packed_word_t* bank2,
-                         const typename InterpolationParams<P>::packed_word_t* bank3,
-                         const typename InterpolationParams<P>::packed_word_t* bank4,
-                         const typename InterpolationParams<P>::packed_word_t* bank5,
-                         const typename InterpolationParams<P>::packed_word_t* bank6,
-                         const typename InterpolationParams<P>::packed_word_t* bank7, int width,
-                         int y, OutputPixel<P>* fb, std::uint64_t& samples) {
+void render_row_streamed(const FrameState<P, U>& f, const BankPorts<P>& ports, int width, int y,
+                         OutputPixel<P>* fb, std::uint64_t& samples) {
   VOXCAST_HLS_PRAGMA(HLS DATAFLOW)
   const bool mip = frame_is_mip<U>(f.mode);
   const bool shaded = frame_is_shaded<U>(f.mode);
@@ -449,8 +441,7 @@ void render_row_streamed(const FrameState<P, U>& f,
   VOXCAST_HLS_PRAGMA(HLS STREAM variable = shaded_samples depth = kSampleFifoDepth)
   ray_setup_stage<P, U>(f.geometry, f.rsqrt, width, y, rays);
   march_stage<P, U>(f.geometry, f.leap, f.minmax, mip, width, rays, accesses);
-  interpolation_stage<P>(bank0, bank1, bank2, bank3, bank4, bank5, bank6, bank7, width, accesses,
-                         interpolated);
+  interpolation_stage<P>(ports, width, accesses, interpolated);
   classification_stage<P, U>(f.class_table, width, interpolated, classified);
   shading_stage<P, U>(f.reflectance, f.reflectance_regs, shaded, width, classified,
                       shaded_samples);
@@ -459,11 +450,10 @@ void render_row_streamed(const FrameState<P, U>& f,
 
 // The frame: one run of the region per row; `samples` is the frame's count of
 // composited samples (cast_ray's count). Its only pointers are the eight bank
-// ports and the frame buffer (tools/synth_lint --region checks that the top
-// passes it nothing else).
+// ports and the frame buffer, which the top passes as they are
+// (tools/synth_lint --region checks that it passes nothing else).
 template <class P, class U>
-void render_frame_streamed(const FrameState<P, U>& f,
-                           const typename InterpolationParams<P>::packed_word_t* bank0,
+void render_frame_streamed(const FrameState<P, U>& f, const typename InterpolationParams<P>::packed_word_t* bank0,
                            const typename InterpolationParams<P>::packed_word_t* bank1,
                            const typename InterpolationParams<P>::packed_word_t* bank2,
                            const typename InterpolationParams<P>::packed_word_t* bank3,
@@ -472,12 +462,12 @@ void render_frame_streamed(const FrameState<P, U>& f,
                            const typename InterpolationParams<P>::packed_word_t* bank6,
                            const typename InterpolationParams<P>::packed_word_t* bank7, int width,
                            int height, OutputPixel<P>* fb, std::uint64_t& samples) {
+  const BankPorts<P> ports = {bank0, bank1, bank2, bank3, bank4, bank5, bank6, bank7};
   std::uint64_t total = 0;
   [[gnu::unused]] streamed_row_loop : for (int y = 0; y < height; ++y) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 8192 avg = 256)
     std::uint64_t row = 0;
-    render_row_streamed<P, U>(f, bank0, bank1, bank2, bank3, bank4, bank5, bank6, bank7, width, y,
-                              fb, row);
+    render_row_streamed<P, U>(f, ports, width, y, fb, row);
     total += row;
   }
   samples = total;
