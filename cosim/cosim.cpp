@@ -1,5 +1,6 @@
 #include "cosim/cosim.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -222,6 +223,22 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   return r;
 }
 
+namespace {
+// "none ...", or "N (worst case X LSB): key key ..." (the precision guard, cosim/warnings.hpp).
+std::string hazard_summary(const std::vector<Hazard>& hazards) {
+  if (hazards.empty()) return "none predicted by the precision guard";
+  double worst = 0.0;
+  std::string keys;
+  for (const Hazard& h : hazards) {
+    worst = std::max(worst, h.worst_lsb);
+    keys += " " + h.key;
+  }
+  std::ostringstream os;
+  os << hazards.size() << " (worst case " << std::setprecision(3) << worst << " LSB):" << keys;
+  return os.str();
+}
+}  // namespace
+
 void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r) {
   if (scene.algorithm == ref::Algorithm::Heidelberg)
     return print_cosim_summary_heidelberg(os, scene, r);
@@ -241,6 +258,7 @@ void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimR
      << "accuracy   " << (r.hls_ran ? "hls" : "bit-true") << " vs float: PSNR " << a.psnr_db << " dB, max " << a.max_abs_err_lsb
      << " LSB, rms " << std::setprecision(3) << a.rms_err_lsb << " LSB, " << std::setprecision(2)
      << a.pct_within_1lsb << "% of pixels within 1 LSB\n"
+     << "hazards    " << hazard_summary(r.hazards) << "\n"
      << "truth      " << (r.hls_ran ? "hls" : "bit-true") << " vs float at " << r.truth.oversampling
      << "x oversampling, ERT at 1 - 2^-20: PSNR " << r.truth_accuracy.psnr_db << " dB, max "
      << r.truth_accuracy.max_abs_err_lsb << " LSB, " << r.truth_accuracy.pct_within_1lsb
