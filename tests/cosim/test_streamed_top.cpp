@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -70,14 +71,18 @@ Streamed render_streamed(const bittrue::FrameSetup& fs, const bittrue::VoxelMemo
 
 // The scene with `sets` over scenes/default.toml, small enough for a unit test.
 ref::Scene scene_with(std::vector<std::string> sets, const std::string& file = "default.toml") {
-  sets.push_back("render.width=40");
-  sets.push_back("render.height=32");
+  sets.push_back("render.width=24");
+  sets.push_back("render.height=16");
   return ref::load_scene_file(std::string(VOXCAST_SOURCE_DIR) + "/scenes/" + file, sets);
 }
 
 void expect_streamed_equals_engine(const ref::Scene& scene, const std::string& what) {
   SCOPED_TRACE(what);
-  const cosim::SceneVolume sv = cosim::load_scene_volume(scene);
+  // The scenes share two volumes: each loaded once.
+  static std::map<std::string, std::shared_ptr<const cosim::SceneVolume>> volumes;
+  auto& cached = volumes[scene.volume.source];
+  if (!cached) cached = std::make_shared<const cosim::SceneVolume>(cosim::load_scene_volume(scene));
+  const cosim::SceneVolume& sv = *cached;
   const ref::RenderInputs in =
       ref::make_render_inputs(scene, sv.volume, sv.gradients, scene.camera.pose);
   const bittrue::FrameSetup fs = bittrue::make_frame_setup(scene.precision, scene, in);
@@ -132,8 +137,8 @@ TEST(StreamedTop, ParallelCameraAndOtherProfilesEqualTheEngine) {
 TEST(StreamedTop, OnePixelRowsAndMissedRaysEqualTheEngine) {
   expect_streamed_equals_engine(
       ref::load_scene_file(std::string(VOXCAST_SOURCE_DIR) + "/scenes/default.toml",
-                      {"render.width=1", "render.height=24"}),
-      "1 x 24");
+                      {"render.width=1", "render.height=16"}),
+      "1 x 16");
   expect_streamed_equals_engine(scene_with({"camera.fov_deg=150"}), "fov 150: most rays miss");
 }
 
