@@ -70,9 +70,15 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
                 {"projection", ref::to_string(scene.camera.projection)},
                 {"oversampling", scene.render.oversampling},
                 {"ert_threshold", scene.render.ert_threshold}};
-  j["stats"] = {{"rays", s.stats.rays}, {"rays_hit", s.stats.rays_hit},
-                {"rays_terminated_early", s.stats.rays_terminated_early},
-                {"samples", s.stats.samples}};
+  // The counts of ref::FrameStats (docs/pipeline.md §9); a MIP frame has no
+  // early ray termination: null, not 0.
+  j["stats"] = {{"rays", s.stats.rays},
+                {"rays_hit", s.stats.rays_hit},
+                {"rays_terminated_early", scene.render.mode == ref::RenderMode::Mip
+                                              ? nlohmann::json(nullptr)
+                                              : nlohmann::json(s.stats.rays_terminated_early)},
+                {"samples", s.stats.samples},
+                {"samples_skipped", s.stats.samples_skipped}};
   j["timing"] = {{"load_seconds", s.load_seconds}, {"render_seconds", s.render_seconds},
                  {"threads", s.threads}};
   if (s.engine == Engine::Rtl)
@@ -100,10 +106,7 @@ ref::Image render_view(const ref::Scene& scene, const ref::Volume& volume,
   if (engine == Engine::Rtl) {
     const rtl::RtlResult r = rtl::rtl_render(setup, *memory, rtl::rtl_config(scene.rtl), trace);
     summary.vcd_commands += r.traced_commands;
-    fs.rays = r.stats.rays;
-    fs.rays_hit = r.stats.rays_hit;
-    fs.rays_terminated_early = r.stats.rays_ert;
-    fs.samples = r.stats.samples;
+    fs = rtl::frame_stats(r.stats);
     summary.rtl_cycles += static_cast<double>(r.stats.cycles);
     summary.rtl_ns_per_sample = r.stats.ns_per_sample();
     summary.rtl_fps = r.stats.fps();
@@ -194,10 +197,7 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
       s.written.push_back(vcd_path);
       trace.out = nullptr;
     }
-    s.stats.samples += fs.samples;
-    s.stats.rays += fs.rays;
-    s.stats.rays_hit += fs.rays_hit;
-    s.stats.rays_terminated_early += fs.rays_terminated_early;
+    s.stats += fs;
     for (const std::string& out : options.outputs) {
       const std::string path = with_suffix(out, view.suffix);
       write_image(path, img, scene.render.background);
@@ -233,6 +233,14 @@ void print_heidelberg_setup(std::ostream& os, const ref::Scene& scene, const Ren
        << " frames/s, " << s.rtl_ns_per_sample << " ns/voxel; rtl == hls on every pixel\n";
 }
 
+// A count as printed: exact below a million, else in millions to 0.1 M.
+std::string sample_count(std::uint64_t n) {
+  if (n < 1000000) return std::to_string(n);
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << static_cast<double>(n) / 1e6 << " M";
+  return os.str();
+}
+
 void print_raycast_setup(std::ostream& os, const ref::Scene& scene, const RenderSummary& s) {
   const double rays = static_cast<double>(std::max<std::uint64_t>(s.stats.rays, 1));
   os << "image    " << scene.render.width << "x" << scene.render.height << " "
@@ -242,9 +250,18 @@ void print_raycast_setup(std::ostream& os, const ref::Scene& scene, const Render
      << "engine   " << to_string(s.engine)
      << (s.engine == Engine::Ref ? "" : ", profile " + scene.precision_name) << ", " << s.threads
      << " threads, " << s.render_seconds << " s\n"
-     << "rays     " << 100.0 * static_cast<double>(s.stats.rays_hit) / rays << "% hit the volume, "
-     << 100.0 * static_cast<double>(s.stats.rays_terminated_early) / rays << "% terminated early, "
-     << std::setprecision(1) << static_cast<double>(s.stats.samples) / 1e6 << " M samples\n";
+     << "rays     " << 100.0 * static_cast<double>(s.stats.rays_hit) / rays << "% hit the volume, ";
+  // ref::FrameStats' counts (docs/pipeline.md §9); MIP has no early ray
+  // termination and never leaps.
+  const bool mip = scene.render.mode == ref::RenderMode::Mip;
+  if (mip)
+    os << "no early termination (MIP), ";
+  else
+    os << 100.0 * static_cast<double>(s.stats.rays_terminated_early) / rays << "% terminated early, ";
+  os << sample_count(s.stats.samples) << " samples";
+  if (scene.render.space_leaping && !mip)
+    os << ", " << sample_count(s.stats.samples_skipped) << " skipped by space leaping";
+  os << "\n" << std::setprecision(2);
   if (s.engine == Engine::Rtl)
     os << std::setprecision(0) << "card     " << s.rtl_cycles << std::setprecision(2)
        << " cycles at 100 MHz: " << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample

@@ -38,7 +38,7 @@ struct RenderSummary {
   double render_seconds = 0.0;
   int threads = 0;
   Engine engine = Engine::Ref;
-  ref::FrameStats stats;
+  ref::FrameStats stats;            // summed over views; a VIRIM scene counts only rays
   double rtl_cycles = 0.0;         // summed over frames (rtl engine)
   double rtl_ns_per_sample = 0.0;  // of the last frame
   double rtl_fps = 0.0;

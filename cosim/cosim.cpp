@@ -173,7 +173,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
     j["fps"] = st.fps();
     j["ns_per_sample"] = st.ns_per_sample();
     j["samples"] = st.samples;
-    if (st.leaps > 0) j["samples_skipped"] = st.samples_skipped;  // docs/leaping.md
+    // Up to each ray's end, as `samples` (docs/pipeline.md §9, docs/leaping.md).
+    if (st.leaps > 0) j["samples_skipped"] = rtl::frame_stats(st).samples_skipped;
     if (st.issue_bypasses > 0) j["issue_bypasses"] = st.issue_bypasses;  // docs/performance.md §7
     j["row_hit_rate"] = st.row_hit_rate();
     j["stalls"] = {{"issue_no_ray", st.stalls.issue_no_ray},

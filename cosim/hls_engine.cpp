@@ -27,14 +27,12 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
   const hls::host::BitTrueBanks<P> banks(memory);
   const int w = fs.regs.width, h = fs.regs.height;
   std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  std::vector<std::uint64_t> row_samples(static_cast<std::size_t>(h), 0);
-  std::vector<std::uint64_t> row_skipped(static_cast<std::size_t>(h), 0);
+  std::vector<hls::RowStats> rows(static_cast<std::size_t>(h));
   ref::parallel_for(
       h,
       [&](int y) {
         hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(),
-                            &row_samples[static_cast<std::size_t>(y)],
-                            &row_skipped[static_cast<std::size_t>(y)]);
+                            &rows[static_cast<std::size_t>(y)]);
       },
       threads);
   ref::QuantImage img(w, h, P::out_bits);
@@ -42,8 +40,12 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
   if (stats) {
     *stats = ref::FrameStats{};
     stats->rays = fb.size();
-    for (std::uint64_t n : row_samples) stats->samples += n;
-    for (std::uint64_t n : row_skipped) stats->samples_skipped += n;
+    for (const hls::RowStats& r : rows) {
+      stats->samples += r.samples;
+      stats->samples_skipped += r.samples_skipped;
+      stats->rays_hit += r.rays_hit;
+      stats->rays_terminated_early += r.rays_terminated_early;
+    }
   }
   return img;
 }
@@ -73,6 +75,7 @@ struct Recorder {
     return t;
   }
   void skip(std::uint64_t) {}  // skipped samples leave no trace, as in the bit-true engine
+  void ert(std::uint64_t) {}   // the trace ends at the terminating sample
   // MIP sample.
   template <class Pos, class M>
   void sample(const Pos& p, const hls::Sample<P>& s, const M& peak) {

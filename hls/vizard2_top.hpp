@@ -98,18 +98,43 @@ bool frame_is_shaded(FrameMode mode) {
 
 // Tracing hook: the default does nothing and compiles away. The cosim harness
 // passes a tracer that records every unit's output (cosim/hls_engine.cpp).
+// ray: the ray's set-up; sample: each sample's unit outputs; skip: a leap's
+// sample count; ert(k): early ray termination after sample k (of 0 .. n-1).
 struct NullTracer {
   template <class Ray>
   void ray(const Ray&) {}
   template <class... Args>
   void sample(const Args&...) {}
   void skip(std::uint64_t) {}
+  void ert(std::uint64_t) {}
 };
 
-// Counts the samples space leaping skipped (render_rows' statistics).
-struct SkipCounter : NullTracer {
-  std::uint64_t skipped = 0;
-  void skip(std::uint64_t run) { skipped += run; }
+// render_rows' statistics over its rows, as ref::FrameStats defines them
+// (refmodel/render/raycaster.hpp, docs/pipeline.md §9).
+struct RowStats {
+  std::uint64_t samples = 0;                // samples interpolated
+  std::uint64_t samples_skipped = 0;        // by space leaping
+  std::uint64_t rays_hit = 0;               // the set-up's hit flag (§1.5)
+  std::uint64_t rays_terminated_early = 0;  // ERT before the ray's last sample
+};
+
+// Counts the rays that hit, those ERT ended before their last sample, and the
+// samples space leaping skipped: host statistics (render_rows). The
+// synthesized top runs the streamed region (hls/vizard2_dataflow.hpp), which
+// counts none of them.
+struct StatsCounter : NullTracer {
+  RowStats& stats;
+  std::uint64_t n = 0;  // the current ray's sample count
+  explicit StatsCounter(RowStats& s) : stats(s) {}
+  template <class Ray>
+  void ray(const Ray& r) {
+    n = r.hit ? r.n.to_uint64() : 0;
+    if (r.hit) ++stats.rays_hit;
+  }
+  void skip(std::uint64_t run) { stats.samples_skipped += run; }
+  void ert(std::uint64_t k) {
+    if (k + 1 < n) ++stats.rays_terminated_early;
+  }
 };
 
 // ---- The units of cast_ray, each with its absent form -------------------------------------
@@ -225,7 +250,8 @@ void mip_finish(bool, const typename CompositorParams<P>::value_t&, const Compos
                 Accumulator<P>&, Has<false>) {}
 
 // One ray through the whole pipeline; `samples` counts the samples it took
-// (tracer.skip those space leaping skipped). Units the design lacks are cut at
+// (tracer.skip those space leaping skipped, tracer.ert the sample at which
+// early ray termination ended it). Units the design lacks are cut at
 // compile time: a MIP-only design has no classification, shading or
 // compositing here, a design without MIP no maximum register, one without ERT
 // no comparator, one without space leaping no min-max memory or leap search.
@@ -243,10 +269,12 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
   typename CompositorParams<P>::value_t peak = 0;
   using HasMip = Has<can_mip(u)>;
   using HasComposite = Has<can_composite(u)>;
-  auto per_sample = [&](std::uint64_t, const auto& p, const Sample<P>& s) -> bool {
+  auto per_sample = [&](std::uint64_t k, const auto& p, const Sample<P>& s) -> bool {
     ++samples;
     if (mip_sample<P>(mip, peak, p, s, tracer, HasMip{})) return true;
-    return composite_sample<P, U>(f, shaded, p, s, acc, tracer, HasComposite{});
+    const bool goes_on = composite_sample<P, U>(f, shaded, p, s, acc, tracer, HasComposite{});
+    if (!goes_on) tracer.ert(k);
+    return goes_on;
   };
   const bool leaped =
       march_leaping<P, U>(f, banks, ray, mip, per_sample, tracer, Has<U::space_leaping>{});
@@ -256,22 +284,19 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
 }
 
 // The frame loop over rows [y0, y1) of a width-pixel image: one pixel per
-// iteration, written to fb[y * width + x]. The cosim harness calls it for row
-// ranges on several host threads; the synthesized top calls it for the frame.
+// iteration, written to fb[y * width + x], its counts added to *stats. The
+// cosim harness calls it for row ranges on several host threads.
 template <class P, class U, class Banks>
 void render_rows(const FrameState<P, U>& f, const Banks& banks, int width, int y0, int y1,
-                 OutputPixel<P>* fb, std::uint64_t* samples, std::uint64_t* skipped = nullptr) {
-  SkipCounter none;
-  std::uint64_t taken = 0;
+                 OutputPixel<P>* fb, RowStats* stats) {
+  StatsCounter counter(*stats);
   [[gnu::unused]] row_loop : for (int y = y0; y < y1; ++y) {
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 8192 avg = 256)
     [[gnu::unused]] pixel_loop : for (int x = 0; x < width; ++x) {
       VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 8192 avg = 256)
-      fb[y * width + x] = cast_ray<P, U>(f, banks, x, y, taken, none);
+      fb[y * width + x] = cast_ray<P, U>(f, banks, x, y, stats->samples, counter);
     }
   }
-  *samples = taken;
-  if (skipped) *skipped = none.skipped;
 }
 
 }  // namespace hls

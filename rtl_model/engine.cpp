@@ -67,4 +67,14 @@ bool rtl_supports(const PrecisionProfile& p) {
 
 std::string rtl_supported_profiles() { return hls::host::kCompiledProfileNames; }
 
+ref::FrameStats frame_stats(const RtlStats& s) {
+  ref::FrameStats f;
+  f.rays = s.rays;
+  f.rays_hit = s.rays_hit;
+  f.rays_terminated_early = s.rays_ert;
+  f.samples = s.samples;
+  f.samples_skipped = s.samples_skipped - s.samples_skipped_discarded;
+  return f;
+}
+
 }  // namespace voxcast::rtl

@@ -16,6 +16,7 @@
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/precision/profile.hpp"
 #include "refmodel/render/quant_image.hpp"
+#include "refmodel/render/raycaster.hpp"
 #include "rtl_model/layout/address_mapping.hpp"
 #include "rtl_model/pipeline/config.hpp"
 #include "rtl_model/pipeline/stats.hpp"
@@ -54,6 +55,12 @@ struct RtlResult {
 // the cycles and pixels are the same with and without.
 RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
                      const RtlConfig& config = {}, const trace::TraceOptions* trace = nullptr);
+
+// The frame's counts as the other engines report them (ref::FrameStats):
+// rays, rays_hit, rays_ert, the composited samples and the samples leapt over
+// (both the hls engine's counts: what the issue stage issued or leapt over
+// beyond an early termination, which depends on timing, is not in them).
+ref::FrameStats frame_stats(const RtlStats& s);
 
 bool rtl_supports(const PrecisionProfile& profile);
 std::string rtl_supported_profiles();

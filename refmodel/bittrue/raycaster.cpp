@@ -97,8 +97,7 @@ Divergence first_divergence(const RayTrace& a, const RayTrace& b) {
 }
 
 std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory& memory, int px,
-                                         int py, RayTrace* trace, std::uint64_t* samples,
-                                         std::uint64_t* skipped) {
+                                         int py, RayTrace* trace, ref::RayStats* stats) {
   const PrecisionProfile& p = fs.profile;
   const BtRay ray = bt_ray_setup(fs, px, py);
   if (trace) {
@@ -111,7 +110,10 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
       trace->step = ray.s;
     }
   }
-  std::uint64_t taken = 0, leapt = 0;
+  ref::RayStats local;
+  ref::RayStats& rs = stats ? *stats : local;
+  rs = ref::RayStats{};
+  rs.hit = ray.hit;
   std::array<std::uint32_t, 4> out{0, 0, 0, 0};
   if (ray.hit) {
     const bool mip = fs.regs.mode == ref::RenderMode::Mip;
@@ -124,10 +126,10 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
       if (j > 0) pos = bt_step(pos, ray.s);
       // A sample in an empty block classifies transparent: skipped unread.
       if (leap && bt_skips(fs, pos)) {
-        ++leapt;
+        ++rs.skipped;
         continue;
       }
-      ++taken;
+      ++rs.samples;
       const BtSample s = bt_interpolate(p, fs.regs, memory, pos);
       SampleTrace st;
       st.position = pos;
@@ -153,37 +155,34 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
       }
       st.accumulator = {acc.C[0], acc.C[1], acc.C[2], acc.A};
       if (trace) trace->trace.push_back(st);
-      if (stop) break;
+      if (stop) {
+        rs.terminated_early = j + 1 < ray.n;
+        break;
+      }
     }
     out = bt_output(p, mip ? bt_mip_pixel(fs, peak) : acc);
   }
   if (trace) trace->out = out;
-  if (samples) *samples = taken;
-  if (skipped) *skipped = leapt;
   return out;
 }
 
 ref::QuantImage bt_render_image(const FrameSetup& fs, const VoxelMemory& memory, int threads,
                                 ref::FrameStats* stats) {
   ref::QuantImage img(fs.regs.width, fs.regs.height, fs.profile.out_bits);
-  std::vector<std::uint64_t> row_samples(static_cast<std::size_t>(img.height), 0);
-  std::vector<std::uint64_t> row_skipped(static_cast<std::size_t>(img.height), 0);
+  std::vector<ref::FrameStats> rows(static_cast<std::size_t>(img.height));
   ref::parallel_for(
       img.height,
       [&](int y) {
         for (int x = 0; x < img.width; ++x) {
-          std::uint64_t n = 0, skipped = 0;
-          img.at(x, y) = bt_cast_ray(fs, memory, x, y, nullptr, &n, &skipped);
-          row_samples[static_cast<std::size_t>(y)] += n;
-          row_skipped[static_cast<std::size_t>(y)] += skipped;
+          ref::RayStats rs;
+          img.at(x, y) = bt_cast_ray(fs, memory, x, y, nullptr, &rs);
+          rows[static_cast<std::size_t>(y)].add(rs);
         }
       },
       threads);
   if (stats) {
     *stats = ref::FrameStats{};
-    stats->rays = static_cast<std::uint64_t>(img.width) * static_cast<std::uint64_t>(img.height);
-    for (std::uint64_t n : row_samples) stats->samples += n;
-    for (std::uint64_t n : row_skipped) stats->samples_skipped += n;
+    for (const ref::FrameStats& r : rows) *stats += r;
   }
   return img;
 }

@@ -54,11 +54,12 @@ struct Divergence {
 Divergence first_divergence(const RayTrace& a, const RayTrace& b);
 
 // One pixel. `trace` (optional) receives every sample's unit outputs;
-// `samples` counts the samples read, `skipped` those space leaping skipped.
+// `stats` (optional) what the ray did, as ref::FrameStats defines it: the
+// geometry processor's hit flag, the samples read and those space leaping
+// skipped, and whether ERT ended the ray before its last sample position.
 std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& setup, const VoxelMemory& memory,
                                          int px, int py, RayTrace* trace = nullptr,
-                                         std::uint64_t* samples = nullptr,
-                                         std::uint64_t* skipped = nullptr);
+                                         ref::RayStats* stats = nullptr);
 
 // Space leaping (setup.leap set): whether the block with index `block` is
 // empty (hls::block_empty), and whether the sample at `pos` lies in an empty

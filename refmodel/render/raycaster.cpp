@@ -255,25 +255,38 @@ Image render_image(const RenderInputs& in, int threads, FrameStats* stats) {
           img.at(x, y) = cast_ray(in.volume, in.tf, in.shading, in.settings,
                                   primary_ray(in.camera, x, y), &rs,
                                   in.leap ? &*in.leap : nullptr, pixel_jitter(in.settings, x, y));
-          fs.rays += 1;
-          fs.samples += rs.samples;
-          fs.samples_skipped += rs.skipped;
-          fs.rays_hit += rs.hit ? 1 : 0;
-          fs.rays_terminated_early += rs.terminated_early ? 1 : 0;
+          fs.add(rs);
         }
       },
       threads);
   if (stats) {
     *stats = FrameStats{};
-    for (const FrameStats& r : rows) {
-      stats->samples += r.samples;
-      stats->rays += r.rays;
-      stats->rays_hit += r.rays_hit;
-      stats->rays_terminated_early += r.rays_terminated_early;
-      stats->samples_skipped += r.samples_skipped;
-    }
+    for (const FrameStats& r : rows) *stats += r;
   }
   return img;
+}
+
+void FrameStats::add(const RayStats& r) {
+  rays += 1;
+  samples += r.samples;
+  samples_skipped += r.skipped;
+  rays_hit += r.hit ? 1 : 0;
+  rays_terminated_early += r.terminated_early ? 1 : 0;
+}
+
+FrameStats& FrameStats::operator+=(const FrameStats& o) {
+  samples += o.samples;
+  rays += o.rays;
+  rays_hit += o.rays_hit;
+  rays_terminated_early += o.rays_terminated_early;
+  samples_skipped += o.samples_skipped;
+  return *this;
+}
+
+std::ostream& operator<<(std::ostream& os, const FrameStats& s) {
+  return os << "{rays " << s.rays << ", hit " << s.rays_hit << ", terminated early "
+            << s.rays_terminated_early << ", samples " << s.samples << ", skipped "
+            << s.samples_skipped << "}";
 }
 
 }  // namespace voxcast::ref

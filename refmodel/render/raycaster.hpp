@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <ostream>
 #include <vector>
 
 #include "refmodel/math/geometry.hpp"
@@ -99,9 +100,11 @@ struct Accumulator {
 void composite(Accumulator& acc, const Vec3& color, double alpha);
 
 // --- The whole ray -------------------------------------------------------------
+// What one ray did; the bit-true engine fills the same structure. The
+// definitions, and where the engines legitimately differ, are FrameStats'.
 struct RayStats {
-  std::uint32_t samples = 0;
-  std::uint32_t skipped = 0;  // samples space leaping skipped (not in `samples`)
+  std::uint64_t samples = 0;
+  std::uint64_t skipped = 0;  // samples space leaping skipped (not in `samples`)
   bool hit = false;
   bool terminated_early = false;
 };
@@ -139,13 +142,39 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
 double pixel_jitter(const RenderSettings& settings, int x, int y);
 
 // --- The whole image -------------------------------------------------------------
+// The counts of one frame, the same in every engine of the ray caster (ref,
+// bittrue, hls, rtl; docs/pipeline.md §9 "What the engines count"):
+//   rays                   pixels cast, width x height;
+//   rays_hit               rays that enter the rendered box: ray set-up finds
+//                          an entry no later than the exit (ref: clip() in
+//                          double; the fixed-point engines: the geometry
+//                          processor's hit flag, §1.5, in the profile's widths);
+//   rays_terminated_early  rays whose accumulated opacity reached the ERT
+//                          threshold at a sample before the ray's last sample
+//                          position (samples were left, to read or to leap
+//                          over); 0 in MIP and with ERT off, which have no ERT;
+//   samples                samples interpolated (read from the volume); the
+//                          samples space leaping skipped are not in it;
+//   samples_skipped        samples space leaping skipped unread.
+// Where they differ: ref decides the hit, the sample count and the ERT sample
+// in double, the fixed-point engines in their widths, so a ray grazing the box
+// may hit in one and not the other and a ray may end a sample earlier or
+// later; the emptiness of a leaping block is decided on the double transfer
+// function in ref and on the classification table in the fixed-point engines.
+// bittrue, hls and rtl decide every count on the same bits and agree exactly.
 struct FrameStats {
   std::uint64_t samples = 0;
   std::uint64_t rays = 0;
   std::uint64_t rays_hit = 0;
   std::uint64_t rays_terminated_early = 0;
   std::uint64_t samples_skipped = 0;  // by space leaping (not in `samples`)
+
+  // One more ray.
+  void add(const RayStats& r);
+  FrameStats& operator+=(const FrameStats& o);
+  bool operator==(const FrameStats&) const = default;
 };
+std::ostream& operator<<(std::ostream& os, const FrameStats& s);
 
 struct RenderInputs {
   RenderVolume volume;

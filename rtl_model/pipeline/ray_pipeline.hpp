@@ -227,9 +227,11 @@ class RayPipeline {
     std::array<layout::WordCoord, layout::kDimms> next_coord{};
     std::array<sdram::Address, layout::kDimms> next_addr{};
   };
+  // Samples carry k, their place among the ray's issued samples, and pos,
+  // their place among all its samples (issued or leapt over), 0 .. n-1.
   struct Buffered {  // one sample between address generator and interpolation
     int slot = 0;
-    std::uint64_t k = 0;
+    std::uint64_t k = 0, pos = 0;
     unsigned arrived = 0;  // bit d: DIMM d's word is in
     hls::BankAccess<P> access;
     std::array<layout::WordCoord, layout::kDimms> coord{};
@@ -246,20 +248,20 @@ class RayPipeline {
   struct Interpolated {
     Cycle ready = 0;
     int slot = 0;
-    std::uint64_t k = 0;
+    std::uint64_t k = 0, pos = 0;
     hls::Sample<P> s;
   };
   struct Classified {
     Cycle ready = 0;
     int slot = 0;
-    std::uint64_t k = 0;
+    std::uint64_t k = 0, pos = 0;
     hls::Sample<P> s;
     hls::ClassEntry<P> e;
   };
   struct Shaded {
     Cycle ready = 0;
     int slot = 0;
-    std::uint64_t k = 0;
+    std::uint64_t k = 0, pos = 0;
     typename C::value_t value = 0;  // MIP
     typename C::alpha_t alpha = 0;
     hls::ShadedColor<P> c;
@@ -374,7 +376,7 @@ class RayPipeline {
         } else if (e.alpha != 0) {
           hls::composite<P>(s.acc, e.c, e.alpha);
           if (hls::ert_reached<P>(s.acc, f_.compositor)) {
-            if (!done) ++stats_.rays_ert;
+            end_early(s, e);
             done = true;
           }
         }
@@ -415,6 +417,7 @@ class RayPipeline {
     out.ready = now + config_.latency.shading;
     out.slot = in.slot;
     out.k = in.k;
+    out.pos = in.pos;
     out.value = in.s.value;
     out.alpha = 0;
     if (!mip_) {
@@ -436,6 +439,7 @@ class RayPipeline {
     out.ready = now + config_.latency.classification;
     out.slot = in.slot;
     out.k = in.k;
+    out.pos = in.pos;
     out.s = in.s;
     if (!mip_) out.e = hls::classify<P>(f_.class_table, in.s.value);
     class_.push(out);
@@ -466,6 +470,7 @@ class RayPipeline {
     out.ready = now + config_.latency.interpolation;
     out.slot = b.slot;
     out.k = b.k;
+    out.pos = b.pos;
     out.s = hls::interpolation_processor<P>(corner, b.access.fq);
     interp_.push(out);
     advance_buffer();
@@ -534,6 +539,7 @@ class RayPipeline {
     Buffered& b = buf_[tail];
     b.slot = i;
     b.k = s.issued;
+    b.pos = s.next;
     b.arrived = 0;
     b.access = s.next_access;
     b.coord = s.next_coord;
@@ -662,6 +668,15 @@ class RayPipeline {
     ++events_;
     if (s.next == s.n) end_issue(j, issue_q_.at(j), s);
     return true;
+  }
+
+  // Early ray termination at sample e (ref::FrameStats): the ray ended early
+  // unless e is its sample n-1. The samples the issue stage leapt over beyond
+  // e (positions e.pos+1 .. next-1 not issued) count as discarded skips, as
+  // the issued ones beyond e count as discarded samples.
+  void end_early(const Slot& s, const Shaded& e) {
+    if (e.pos + 1 < s.n) ++stats_.rays_ert;
+    stats_.samples_skipped_discarded += (s.next - 1 - e.pos) - (s.issued - 1 - e.k);
   }
 
   // Ray `i`, at place `j` of the issue queue, has no sample left to issue. If

@@ -75,14 +75,15 @@ std::ostream& operator<<(std::ostream& os, const RtlStats& s) {
   os << std::fixed << std::setprecision(3);
   os << "frame: " << s.cycles << " cycles at " << s.clock_mhz << " MHz = " << s.seconds() * 1e3
      << " ms (" << s.fps() << " fps)\n";
-  os << "rays " << s.rays << " (" << s.rays_hit << " hit, " << s.rays_ert << " ended by ERT)\n";
+  os << "rays " << s.rays << " (" << s.rays_hit << " hit, " << s.rays_ert
+     << " ended early by ERT)\n";
   os << "samples: " << s.samples << " composited, " << s.samples_issued << " issued, "
      << s.samples_discarded << " discarded after ERT; " << s.ns_per_sample()
      << " ns/sample (" << s.ns_per_issued_sample() << " per issued), " << s.samples_per_cycle()
      << " samples/cycle\n";
   if (s.leaps > 0)
     os << "space leaping: " << s.samples_skipped << " samples skipped in " << s.leaps
-       << " leaps\n";
+       << " leaps (" << s.samples_skipped_discarded << " of them after ERT)\n";
   if (s.issue_bypasses > 0)
     os << "row-hit issue: " << s.issue_bypasses
        << " samples issued ahead of the oldest ready ray (at most " << s.issue_longest_bypass

@@ -48,12 +48,14 @@ struct RtlStats {
   double clock_mhz = 0.0;  // core = SDRAM clock
   Cycle cycles = 0;        // the frame, first ray setup to the last pixel written
   std::uint64_t rays = 0;
-  std::uint64_t rays_hit = 0;       // rays that entered the volume
-  std::uint64_t rays_ert = 0;       // rays ended by early ray termination
+  std::uint64_t rays_hit = 0;       // rays that entered the volume (ray set-up's hit flag)
+  std::uint64_t rays_ert = 0;       // rays ERT ended before their last sample
+                                    // (ref::FrameStats::rays_terminated_early)
   std::uint64_t samples = 0;        // samples composited (the hls engine's count)
   std::uint64_t samples_issued = 0; // samples read from memory
   std::uint64_t samples_discarded = 0;  // issued beyond an early termination
   std::uint64_t samples_skipped = 0;    // space leaping: never issued (docs/leaping.md)
+  std::uint64_t samples_skipped_discarded = 0;  // of those, leapt beyond an early termination
   std::uint64_t leaps = 0;              // space leaping: empty blocks leapt over
   std::uint64_t issue_bypasses = 0;     // row-hit issue: samples issued ahead of the oldest ready ray
   std::uint64_t issue_longest_bypass = 0;  // row-hit issue: most bypasses of one oldest ray in a row

@@ -35,8 +35,10 @@ Frame prepare(const ref::Scene& scene, const SceneVolume& sv) {
 // Compares the two engines; on a mismatch names the first pixel and unit.
 void expect_bit_exact(const ref::Scene& scene, const SceneVolume& sv, const std::string& what) {
   const Frame f = prepare(scene, sv);
-  const ref::QuantImage hls = cosim::hls_render_image(f.setup, f.memory, 2);
-  const ref::QuantImage bt = bittrue::bt_render_image(f.setup, f.memory, 2);
+  ref::FrameStats hls_stats, bt_stats;
+  const ref::QuantImage hls = cosim::hls_render_image(f.setup, f.memory, 2, &hls_stats);
+  const ref::QuantImage bt = bittrue::bt_render_image(f.setup, f.memory, 2, &bt_stats);
+  EXPECT_EQ(hls_stats, bt_stats) << what;  // docs/pipeline.md §9
   ASSERT_EQ(hls.pixels.size(), bt.pixels.size());
   for (int y = 0; y < hls.height; ++y)
     for (int x = 0; x < hls.width; ++x)
