@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
+#include "hls/compositor.hpp"
 #include "hls/widths.hpp"
 #include "refmodel/error.hpp"
 
@@ -356,6 +357,10 @@ const char* to_string(OpKind k) {
 std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
                                     const rtl::pipeline::PipelineConfig& pc) {
   const ProfileFields f = hls::profile_fields(e.profile);
+  // The cycle model's elaborated latencies, whose defaults are the units' depths
+  // declared next to their kernels (hls::*_depth); the units inside a stage of
+  // the cycle model (rsqrt in the ray set-up, stepping in the address stage, the
+  // shader in the shading stage) are split by those depths.
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
       pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
   std::vector<UnitOps> units;
@@ -367,20 +372,21 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   const int rsqrt = e.perspective ? rtl::pipeline::kRsqrtStages : 0;
   if (e.perspective) put(geometry_rsqrt(f), rsqrt, l.ray_setup_interval);
   put(ray_setup(f, e.parallel_origin), l.ray_setup - rsqrt, l.ray_setup_interval);
-  put(stepping(f), 1);
-  put(address_generator(f), l.address - 1);
+  put(stepping(f), hls::stepping_depth);
+  put(address_generator(f), l.address - hls::stepping_depth);
   // Beside the address generator: adds its look-up to the requests' latency.
   if (e.space_leaping) put(space_leaping(f, e), l.leap_lookup);
   // Beside the direction and rsqrt pipeline, shorter than it: no latency.
   if (e.jitter) put(jitter(f), 0, l.ray_setup_interval);
   put(interpolation(f, e), l.interpolation);
   if (e.classification) put(classification(f, e), l.classification);
-  if (e.reflectance_map) put(reflectance(f), l.shading - 1);
-  if (e.shader) put(shader(f, e.reflectance_map), e.reflectance_map ? 1 : l.shading);
-  if (e.compositor) put(compositor(f), 1);
-  if (e.ert) put(ert(f), 0);
-  if (e.mip) put(mip(f), 1);
-  put(output(f), 1);
+  if (e.reflectance_map) put(reflectance(f), l.shading - hls::shader_depth);
+  if (e.shader)
+    put(shader(f, e.reflectance_map), e.reflectance_map ? hls::shader_depth : l.shading);
+  if (e.compositor) put(compositor(f), hls::compositor_depth);
+  if (e.ert) put(ert(f), hls::ert_depth);
+  if (e.mip) put(mip(f), hls::mip_depth);
+  put(output(f), hls::output_quantization_depth);
   put(pipeline_buffers(f, e, pc, l), 0);
   return units;
 }
@@ -541,8 +547,9 @@ ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
       pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
   rep.latency_ray_setup = l.ray_setup;
-  rep.latency_sample =
-      l.address + l.leap_lookup + l.interpolation + l.classification + l.shading + 1;
+  // From a sample's address to its composited result (or the MIP register).
+  rep.latency_sample = l.address + l.leap_lookup + l.interpolation + l.classification + l.shading +
+                       (e.mip ? hls::mip_depth : hls::compositor_depth);
   rep.ii = 1;
   return rep;
 }

@@ -10,7 +10,8 @@
 // width the report lists against the kernels' types. Which units exist and
 // their table sizes come from the elaboration (refmodel/scene/elaboration.hpp);
 // latencies from the cycle model's elaborated UnitLatencies
-// (rtl_model/pipeline/config.hpp).
+// (rtl_model/pipeline/config.hpp), whose defaults are the units' depths declared
+// next to their kernels in hls/ (tests/report/test_unit_depths.cpp).
 #pragma once
 
 #include "cosim/files.hpp"

@@ -61,6 +61,13 @@ struct ClassificationParams {
   static_assert(sample_value_bits <= 64, "sample value wider than 64 bits");
 };
 
+// Pipeline depth (clocks; see hls/geometry_processor.hpp, "Pipeline depths"):
+// §4.1 the address (one rounding, one clamp) 1, §4 the table read 1. classify()
+// is inlined into the sample pipeline (HLS INLINE), and Vitis ignores the
+// pragmas of an inlined function (UG1399, "Inline"), so this depth has no
+// LATENCY pragma until the unit is a level of the hierarchy of its own.
+constexpr int classification_depth = 2;
+
 // ---- 2. The unit ----------------------------------------------------------------------------
 
 // One table entry (§4.2).

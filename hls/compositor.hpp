@@ -61,6 +61,17 @@ struct CompositorParams {
   static_assert(out_bits >= 1 && out_bits <= 16, "out_bits out of range");
 };
 
+// Pipeline depths (clocks; see hls/geometry_processor.hpp, "Pipeline depths").
+// §7.1-7.2 the over operator is a one-clock recurrence: the next sample of the
+// same ray reads the A it writes. §7.3 the ERT comparator tests the new A in
+// that clock. §7 MIP: the maximum register, one clock. §8 the output
+// quantization, one clock. These functions are inlined (HLS INLINE), and Vitis
+// ignores an inlined function's pragmas (UG1399, "Inline"): no LATENCY pragmas.
+constexpr int compositor_depth = 1;
+constexpr int ert_depth = 0;
+constexpr int mip_depth = 1;
+constexpr int output_quantization_depth = 1;
+
 // ---- 2. The unit ----------------------------------------------------------------------------
 
 // The per-frame registers of the unit (§0, §7).

@@ -180,12 +180,33 @@ typename GeometryParams<P>::y_t rsqrt_newton(
   return y;
 }
 
+// ---- Pipeline depths ------------------------------------------------------------------------
+// Each unit's depth in clocks at the 100 MHz core clock, one sample (or ray) per
+// clock (VIZARD II runs its core at the SDRAM clock, 2001 paper §2.3), is a
+// constant declared once, next to the unit's kernel (here for the geometry
+// processor, in the other units' headers for theirs; docs/pipeline.md,
+// "Pipeline depths", lists them). The kernel's LATENCY pragma, the cycle model's
+// UnitLatencies (rtl_model/pipeline/config.hpp) and the resource report
+// (cosim/report.cpp) read the constant; tests/report/test_unit_depths.cpp checks
+// that the three agree. The pragmas name plain namespace-scope constants:
+// UG1399 ("Using Constants with Pragmas") allows a const int or constexpr
+// variable as a pragma's value, and says nothing of qualified or
+// template-dependent names. min = max: the tool neither stretches nor shortens
+// the unit, so the cycle model's timing is the design's.
+//
+// The rsqrt unit (docs/pipeline.md §1.2), one multiply or add per clock: d·d
+// (multiply, sum) 2, leading-zero count and shifts 1, seed ROM 1, two Newton
+// steps of three products 6, d'·y 1. A parallel camera has no rsqrt unit: its
+// ray set-up is shorter by these stages.
+constexpr int rsqrt_depth = 11;
+
 // §1.2: u = Q_RND(d·2^e · y, df), the unit direction (u = 0 if d = 0).
 template <class P>
 void normalize_direction(
     const typename GeometryParams<P>::dir_t d[3],
     const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries],
     typename GeometryParams<P>::unit_t u[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = rsqrt_depth max = rsqrt_depth)
   using G = GeometryParams<P>;
   const typename G::n2_t n2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   // Leading-zero count (a priority encoder over the 2df + 2 bits of n2).
@@ -314,11 +335,24 @@ typename GeometryParams<P>::k_t pixel_jitter(const GeometryRegisters<P>& r, int 
   return j;
 }
 
+// The ray set-up without the rsqrt unit (§1.1 or §1.4, §1.3, §1.5-1.6): the
+// pixel's direction or origin, the step vector, the six clip divisions, the
+// comparisons, the sample count and p0. 13 clocks is the cycle model's
+// assumption, not a schedule: the resource report prices each clip division as
+// a fully pipelined restoring divider of k_t's width in quotient bits (48 at
+// kBalanced), one stage per bit, so a vendor tool held to this LATENCY has to
+// use a faster divider or misses it (it then warns and schedules longer,
+// UG1399 "pragma HLS latency"). A new ray every clock either way.
+constexpr int ray_setup_depth = 13;
+constexpr int perspective_ray_setup_depth = ray_setup_depth + rsqrt_depth;
+
 // §1, perspective camera: direction, rsqrt unit, step vector, clip.
 template <class P>
 RaySetup<P> ray_setup_perspective(
     const GeometryRegisters<P>& r,
     const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries], int px, int py) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = perspective_ray_setup_depth
+                         max = perspective_ray_setup_depth)
   using G = GeometryParams<P>;
   const typename G::pixel_t x = px;
   const typename G::pixel_t y = py;
@@ -334,6 +368,7 @@ RaySetup<P> ray_setup_perspective(
 // §1, parallel camera: no rsqrt unit (u = U).
 template <class P>
 RaySetup<P> ray_setup_parallel(const GeometryRegisters<P>& r, int px, int py) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = ray_setup_depth max = ray_setup_depth)
   using G = GeometryParams<P>;
   const typename G::pixel_t x = px;
   const typename G::pixel_t y = py;
@@ -358,10 +393,15 @@ RaySetup<P> ray_setup(const GeometryRegisters<P>& r,
   return ray_setup_parallel<P>(r, px, py);
 }
 
+// Stepping (§2): one adder per axis, one clock. With the address generator's
+// clock (interpolation_processor.hpp) it is the cycle model's `address` stage.
+constexpr int stepping_depth = 1;
+
 // §2: p += s (exact in pf bits).
 template <class P>
 void step_position(typename GeometryParams<P>::pos_t p[3],
                    const typename GeometryParams<P>::step_t s[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = stepping_depth max = stepping_depth)
   [[gnu::unused]] advance_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     p[k] += s[k];

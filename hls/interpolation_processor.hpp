@@ -77,6 +77,20 @@ struct InterpolationParams {
   using gradient_rnd_t = fixed<sample_grad_bits, sample_grad_int_bits, RND>;
 };
 
+// Pipeline depths (clocks; see hls/geometry_processor.hpp, "Pipeline depths").
+// The address generator (§3.1-3.3): clamp, i0, the weights and the bank word
+// addresses in one clock. With stepping's clock it is the cycle model's
+// `address` stage, which gives the mapping of the DIMM words to SDRAM bank, row
+// and column (rtl_model/layout) no clock of its own (the model's assumption).
+constexpr int address_generator_depth = 1;
+// The interpolation unit (§3.4-3.5): the crossbar that puts bank j ^ parity's
+// word at corner j (gather, which has no LATENCY pragma of its own yet), one
+// clock, then three lerp levels (interpolation_processor), one clock each, the
+// last with its Q_RND to sf.
+constexpr int crossbar_depth = 1;
+constexpr int lerp_depth = 3;
+constexpr int interpolation_depth = crossbar_depth + lerp_depth;
+
 // ---- 2. Voxel words and bank views ------------------------------------------------------------
 template <class P>
 struct VoxelWordFx {
@@ -154,6 +168,8 @@ typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
 template <class P>
 BankAccess<P> address_generator(const GeometryRegisters<P>& r,
                                 const typename GeometryParams<P>::pos_t p[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = address_generator_depth
+                         max = address_generator_depth)
   using G = GeometryParams<P>;
   using I = InterpolationParams<P>;
   BankAccess<P> acc;
@@ -216,6 +232,7 @@ struct Sample {
 template <class P>
 Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
                                   const typename InterpolationParams<P>::weight_t fq[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = lerp_depth max = lerp_depth)
   using I = InterpolationParams<P>;
   typename I::vlerp1_t v1[4];
   typename I::glerp1_t g1[3][4];

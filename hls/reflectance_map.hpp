@@ -93,6 +93,16 @@ struct ReflectanceParams {
   static_assert(!bilinear || (wb >= 1 && wb <= 12), "rm_weight_bits out of range");
 };
 
+// Pipeline depth (clocks; see hls/geometry_processor.hpp, "Pipeline depths"):
+// §5.1-5.3 the cell (g·IS, N, the major axis, the two divisions, the index) and
+// the table reads (§5.5: with the blend), 3 clocks: the cycle model's assumption
+// (like the ray set-up's divisions, the report prices each division as a
+// pipelined restoring divider, one stage per quotient bit). reflect() is
+// inlined (HLS INLINE), and Vitis ignores an inlined function's pragmas
+// (UG1399, "Inline"): no LATENCY pragma until the unit has a hierarchy level of
+// its own.
+constexpr int reflectance_map_depth = 3;
+
 // ---- 2. The unit ----------------------------------------------------------------------------
 
 // The per-frame registers of the unit (§0): 1/world_scale per axis.

@@ -32,6 +32,14 @@ struct ShaderParams {
   static_assert(sum_bits <= 64 && product_bits <= 64, "shader products exceed 64 bits");
 };
 
+// Pipeline depth (clocks; see hls/geometry_processor.hpp, "Pipeline depths"):
+// one clock, shaded (the intensity products kd·D, ks·S and colour·I, the sums and
+// the roundings: the cycle model's assumption) or unshaded (U(colour,
+// shade_bits), one rounding adder); with the reflectance map's clocks the cycle
+// model's `shading` stage. shade() is inlined (HLS INLINE), and Vitis ignores an
+// inlined function's pragmas (UG1399, "Inline"): no LATENCY pragma here.
+constexpr int shader_depth = 1;
+
 // The shaded colour of one sample.
 template <class P>
 struct ShadedColor {

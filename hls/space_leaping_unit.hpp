@@ -75,6 +75,19 @@ struct LeapParams {
                            widths::leap_pos_int_bits(profile_fields<P>())>;
 };
 
+// Pipeline depths (clocks; see hls/geometry_processor.hpp, "Pipeline depths").
+// The block look-up beside the address generator (sample_block_empty): the
+// min-max RAM read 1, the two prefix-table reads and their comparison 1. It
+// adds its clocks to every sample's requests.
+constexpr int leap_lookup_depth = 2;
+// The leap's search (leap_run): widths::max_leap_bits compare stages, five to a
+// clock (the cycle model's assumption; every leap costs the same). A leap holds
+// its ray's issue for the look-up and the search.
+constexpr int leap_stages_per_clock = 5;
+constexpr int leap_search_depth =
+    (widths::max_leap_bits + leap_stages_per_clock - 1) / leap_stages_per_clock;
+constexpr int leap_depth = leap_lookup_depth + leap_search_depth;
+
 // ---- 2. Registers and memories -------------------------------------------------------------
 template <class P>
 struct LeapRegisters {
@@ -146,6 +159,7 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
                        typename GeometryParams<P>::pos_t p[3],
                        const typename GeometryParams<P>::step_t s[3], std::uint64_t remaining,
                        const typename LeapParams<P>::bcoord_t b[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = leap_search_depth max = leap_search_depth)
   using G = GeometryParams<P>;
   using L = LeapParams<P>;
   std::uint64_t run = 1;
@@ -180,6 +194,7 @@ template <class P>
 bool sample_block_empty(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
                         const MinMaxMemory<P>& mm, const typename GeometryParams<P>::pos_t p[3],
                         typename LeapParams<P>::bcoord_t b[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = leap_lookup_depth max = leap_lookup_depth)
   block_coords<P>(r, lr, p, b);
   return block_empty<P>(lr, mm.block[block_address<P>(lr, b).to_uint()]);
 }
