@@ -9,14 +9,16 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/engines.hpp"
+#include "hls/compositor.hpp"
+#include "hls/widths.hpp"
 #include "refmodel/error.hpp"
 
 namespace voxcast::cosim {
 
 namespace {
 
-int bits_for(long long n) {  // unsigned bits holding 0..n (at least 1), as hls rm_detail::bits_for
-  return n < 1 ? 1 : static_cast<int>(std::bit_width(static_cast<unsigned long long>(n)));
+int bits_for(long long n) {  // unsigned bits holding 0..n (at least 1)
+  return hls::widths::bits_for(n);
 }
 int ceil_div(long long a, long long b) { return static_cast<int>((a + b - 1) / b); }
 
@@ -36,60 +38,12 @@ Op mem(OpKind k, std::string what, int count, int depth, int width) {
   return {k, std::move(what), count, depth, width};
 }
 
-// The widths of the hls Params structs, by the same formulas (checked against
-// the kernels' types for the presets in tests/report/test_report_widths.cpp).
-struct Widths {
-  int a, pf, df, tf, sb, wb, vb, gb, gfb, sf, tfa, cb, ab, kb, rf, ri, rwb, shb, acc, ob;
-  int pixel = 13;       // GeometryParams::pixel_bits
-  int dir;              // dir_t: df + 2
-  int origin;           // origin_t: a + 4 + pf
-  int unit;             // unit_t: df + 2
-  int kreg;             // kreg_t: df + 3
-  int step;             // step_t: pf + 4
-  int num;              // num_t: a + 5 + tf
-  int k;                // k_t = num_t / step_t (ap division type): num + pf + 1
-  int pos;              // pos_t: a + 2 + pf
-  int count;            // count_t: a + pf + 1
-  int word_addr;        // word_addr_t: 3(a - 1)
-  int grad_int;         // sample gradient integer bits (incl. sign)
-  int sample_grad;      // gradient_t width: grad_int + sf
-  int value;            // value_t: vb + sf
-  int rm_entry;         // ri + rf
-  int rm_side, rm_entries, rm_den, rm_pos, rm_cell, rm_index, rm_wb;
-  int intensity;        // ShaderParams::intensity_t: shb + ri + 2
-};
-
-Widths widths(const PrecisionProfile& p) {
-  Widths w{p.addr_bits, p.pos_frac_bits, p.dir_frac_bits, p.t_frac_bits, p.rsqrt_seed_bits,
-           p.weight_bits, p.value_bits, p.gradient_bits, p.gradient_frac_bits,
-           p.sample_frac_bits, p.tf_addr_bits, p.color_bits, p.alpha_bits, p.k_bits,
-           p.rm_frac_bits, p.rm_int_bits, p.rm_weight_bits, p.shade_bits, p.acc_bits, p.out_bits,
-           13, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-  w.dir = w.df + 2;
-  w.origin = w.a + 4 + w.pf;
-  w.unit = w.df + 2;
-  w.kreg = w.df + 3;
-  w.step = w.pf + 4;
-  w.num = w.a + 5 + w.tf;
-  w.k = w.num + w.pf + 1;
-  w.pos = w.a + 2 + w.pf;
-  w.count = w.a + w.pf + 1;
-  w.word_addr = std::max(1, 3 * (w.a - 1));
-  w.grad_int = w.gb - w.gfb + (w.sf < w.gfb ? 1 : 0);
-  w.sample_grad = w.grad_int + w.sf;
-  w.value = w.vb + w.sf;
-  w.rm_entry = w.ri + w.rf;
-  const bool bil = p.rm_bilinear != 0;
-  w.rm_wb = bil ? p.rm_weight_bits : 0;
-  w.rm_side = bil ? p.rm_res + 1 : p.rm_res;
-  w.rm_entries = 6 * w.rm_side * w.rm_side;
-  w.rm_den = w.grad_int + 1 + w.sf;
-  w.rm_pos = bits_for(static_cast<long long>(p.rm_res) << w.rm_wb);
-  w.rm_cell = bits_for(p.rm_res - 1);
-  w.rm_index = bits_for(w.rm_entries - 1);
-  w.intensity = w.shb + w.ri + 2;
-  return w;
-}
+// The operators below are sized by the hls Params structs' own width functions
+// (hls/widths.hpp), called on the scene's profile: `f` is the profile as the
+// kernels' widths see it. tests/report/test_report.cpp checks every width of
+// every operator against the kernels' types.
+using hls::ProfileFields;
+namespace wd = hls::widths;
 
 // One lerp v0 + (v1 - v0)·f on operands of `bits` (signed difference) and a
 // weight of wb + 1 unsigned bits: subtract, multiply, add.
@@ -100,200 +54,218 @@ void lerp(std::vector<Op>& ops, const std::string& what, int count, int bits, in
   ops.push_back(add(what + ": v0 + ·", count, bits + wb + (is_signed ? 1 : 0)));
 }
 
-UnitOps geometry_rsqrt(const Widths& w) {
+UnitOps geometry_rsqrt(const ProfileFields& f) {
   UnitOps u{"ray_direction+rsqrt", "§1.1-1.2", {}, 0, 1};
   auto& o = u.ops;
-  o.push_back(mul("px·B, py·C", 6, w.pixel, false, w.dir, true));
-  o.push_back(add("d = A + px·B + py·C", 6, w.dir + w.pixel + 2));
-  o.push_back(mul("n2 = d·d", 3, w.dir, true, w.dir, true));
-  o.push_back(add("n2 sum", 2, 2 * w.df + 4));
-  o.push_back(mux("leading-zero count of n2", 1, bits_for(2 * w.df + 2), 2 * w.df + 2));
-  o.push_back(mux("d' = d·2^e (shifter)", 3, w.df + 3, w.df + 1));
-  o.push_back(mux("n2·4^e (shifter)", 1, 2 * w.df + 4, w.df + 1));
-  o.push_back(mem(OpKind::Rom, "rsqrt seed ROM", 1, 1 << w.sb, w.df + 2));
-  o.push_back(mul("Newton: y·y", 2, w.df + 2, false, w.df + 2, false));
-  o.push_back(mul("Newton: m·t", 2, w.df + 1, false, w.df + 3, false));
-  o.push_back(add("Newton: 3 - t", 2, w.df + 4));
-  o.push_back(mul("Newton: y·(3 - t)", 2, w.df + 2, false, w.df + 4, true));
-  o.push_back(add("Newton: rounding", 6, w.df + 3));
-  o.push_back(mul("u = d'·y", 3, w.df + 3, true, w.df + 2, false));
-  o.push_back(add("u rounding", 3, w.unit));
+  const int dir = wd::dir_bits(f);
+  o.push_back(mul("px·B, py·C", 6, wd::pixel_bits, false, dir, true));
+  o.push_back(add("d = A + px·B + py·C", 6, dir + wd::pixel_bits + 2));
+  o.push_back(mul("n2 = d·d", 3, dir, true, dir, true));
+  o.push_back(add("n2 sum", 2, 2 * dir));
+  o.push_back(mux("leading-zero count of n2", 1, bits_for(wd::n2_bits(f)), wd::n2_bits(f)));
+  o.push_back(mux("d' = d·2^e (shifter)", 3, wd::dnorm_bits(f), f.dir_frac_bits + 1));
+  o.push_back(mux("n2·4^e (shifter)", 1, wd::n2_norm_bits(f), f.dir_frac_bits + 1));
+  o.push_back(mem(OpKind::Rom, "rsqrt seed ROM", 1, wd::rsqrt_seed_entries(f), wd::y_bits(f)));
+  o.push_back(mul("Newton: y·y", 2, wd::y_bits(f), false, wd::y_bits(f), false));
+  o.push_back(mul("Newton: m·t", 2, wd::m_bits(f), false, wd::sq_bits(f), false));
+  o.push_back(add("Newton: 3 - t", 2, wd::sq_bits(f) + 1));
+  o.push_back(mul("Newton: y·(3 - t)", 2, wd::y_bits(f), false, wd::sq_bits(f) + 1, true));
+  o.push_back(add("Newton: rounding", 6, wd::sq_bits(f)));
+  o.push_back(mul("u = d'·y", 3, wd::dnorm_bits(f), true, wd::y_bits(f), false));
+  o.push_back(add("u rounding", 3, wd::unit_bits(f)));
   return u;
 }
 
-UnitOps ray_setup(const Widths& w, bool parallel) {
+UnitOps ray_setup(const ProfileFields& f, bool parallel) {
   UnitOps u{"ray_setup", parallel ? "§1.3-1.6" : "§1.3, §1.5-1.6", {}, 0, 1};
   auto& o = u.ops;
-  o.push_back(mul("s = u·K", 3, w.unit, true, w.kreg, false));
-  o.push_back(add("s rounding", 3, w.step));
+  const int k = wd::clip_quotient_bits(f);
+  o.push_back(mul("s = u·K", 3, wd::unit_bits(f), true, wd::kreg_bits(f), false));
+  o.push_back(add("s rounding", 3, wd::step_bits(f)));
   if (parallel) {
-    o.push_back(mul("px·P, py·R", 6, w.pixel, false, w.origin, true));
-    o.push_back(add("o = O + px·P + py·R", 6, w.origin + w.pixel + 2));
+    o.push_back(mul("px·P, py·R", 6, wd::pixel_bits, false, wd::origin_bits(f), true));
+    o.push_back(add("o = O + px·P + py·R", 6, wd::origin_bits(f) + wd::pixel_bits + 2));
   }
-  o.push_back(add("LO - o, HI - o", 6, w.num));
-  o.push_back(div("k = (LO|HI - o) / s", 6, w.k, w.step));
+  o.push_back(add("LO - o, HI - o", 6, wd::clip_num_bits(f)));
+  o.push_back(div("k = (LO|HI - o) / s", 6, k, wd::step_bits(f)));
   o.push_back(cmp("k_lo < k_hi, k_near > k_in, k_far < k_out, k_in < 0, k_in > k_out", 3 + 4 + 2,
-                  w.k));
-  o.push_back(mux("k_near, k_far, k_in, k_out", 10, w.k, 2));
-  o.push_back(cmp("s = 0 axis: LO <= o <= HI", 6, w.origin));
-  o.push_back(add("n = k_out - k_in + 1", 1, w.count));
-  o.push_back(mul("k_in·s", 3, w.k, true, w.step, true));
-  o.push_back(add("p0 = o + Q_RND(k_in·s)", 3, w.pos));
+                  k));
+  o.push_back(mux("k_near, k_far, k_in, k_out", 10, k, 2));
+  o.push_back(cmp("s = 0 axis: LO <= o <= HI", 6, wd::origin_bits(f)));
+  o.push_back(add("n = k_out - k_in + 1", 1, wd::count_bits(f)));
+  o.push_back(mul("k_in·s", 3, k, true, wd::step_bits(f), true));
+  o.push_back(add("p0 = o + Q_RND(k_in·s)", 3, wd::pos_bits(f)));
   return u;
 }
 
-UnitOps stepping(const Widths& w) {
+// The registers of a ray in flight: p0 (or p), s and n.
+int ray_state_bits(const ProfileFields& f) {
+  return 3 * wd::pos_bits(f) + 3 * wd::step_bits(f) + wd::count_bits(f);
+}
+
+UnitOps stepping(const ProfileFields& f) {
   UnitOps u{"stepping", "§2", {}, 0, 1};
-  u.ops.push_back(add("p += s", 3, w.pos));
-  u.ops.push_back(add("sample counter", 1, w.count));
-  u.ops.push_back(cmp("counter = n", 1, w.count));
-  u.ops.push_back(reg("p, s, n of the ray", 3 * w.pos + 3 * w.step + w.count));
+  u.ops.push_back(add("p += s", 3, wd::pos_bits(f)));
+  u.ops.push_back(add("sample counter", 1, wd::count_bits(f)));
+  u.ops.push_back(cmp("counter = n", 1, wd::count_bits(f)));
+  u.ops.push_back(reg("p, s, n of the ray", ray_state_bits(f)));
   return u;
 }
 
-UnitOps address_generator(const Widths& w) {
+UnitOps address_generator(const ProfileFields& f) {
   UnitOps u{"address_generator", "§3.1-3.3", {}, 0, 1};
   auto& o = u.ops;
-  o.push_back(cmp("clamp p into [LO, HI]", 6, w.pos));
-  o.push_back(mux("clamp select", 6, w.pos, 2));
-  o.push_back(cmp("i0 = LAST", 3, w.a));
-  o.push_back(add("i0 - 1", 3, w.a));
-  o.push_back(add("f = p - i0", 3, w.pf + 1));
-  o.push_back(add("fq = Q_RND(f, wb)", 3, w.wb + 1));
-  o.push_back(mul("(i0y>>1)·HX", 1, std::max(1, w.a - 1), false, w.a, false));
-  o.push_back(mul("(i0z>>1)·HXY", 1, std::max(1, w.a - 1), false, 2 * w.a, false));
-  o.push_back(add("base word address", 2, w.word_addr));
-  o.push_back(mux("odd-axis increments", 3, w.word_addr, 2));
-  o.push_back(add("bank addresses (+1, +HX, +HXY)", 12, w.word_addr));
+  const int pos = wd::pos_bits(f);
+  const int coord = wd::coord_bits(f);
+  const int half_index = std::max(1, coord - 1);  // i0 >> 1
+  o.push_back(cmp("clamp p into [LO, HI]", 6, pos));
+  o.push_back(mux("clamp select", 6, pos, 2));
+  o.push_back(cmp("i0 = LAST", 3, coord));
+  o.push_back(add("i0 - 1", 3, coord));
+  o.push_back(add("f = p - i0", 3, wd::cell_frac_bits(f)));
+  o.push_back(add("fq = Q_RND(f, wb)", 3, wd::lerp_weight_bits(f)));
+  o.push_back(mul("(i0y>>1)·HX", 1, half_index, false, wd::half_bits(f), false));
+  o.push_back(mul("(i0z>>1)·HXY", 1, half_index, false, wd::slice_bits(f), false));
+  o.push_back(add("base word address", 2, wd::word_addr_bits(f)));
+  o.push_back(mux("odd-axis increments", 3, wd::word_addr_bits(f), 2));
+  o.push_back(add("bank addresses (+1, +HX, +HXY)", 12, wd::word_addr_bits(f)));
   return u;
 }
 
-UnitOps interpolation(const Widths& w, const ref::Elaboration& e) {
+UnitOps interpolation(const ProfileFields& f, const ref::Elaboration& e) {
   UnitOps u{"interpolation", "§3.4-3.5", {}, 0, 1};
   auto& o = u.ops;
+  const int wb = f.weight_bits;
   const int word = e.value_store_bits + 3 * e.gradient_store_bits;
   o.push_back(mux("crossbar: corner j = bank j ^ parity", 8, word, 8));
   // The value's low value_bits - value_store_bits bits are constant zeros in
   // every voxel (§3.4), so the lerps run on the stored bits (elaboration).
   const int vs = e.value_store_bits;
-  lerp(o, "value lerp x", 4, vs, w.wb, false);
-  lerp(o, "value lerp y", 2, vs + w.wb, w.wb, false);
-  lerp(o, "value lerp z", 1, vs + 2 * w.wb, w.wb, false);
-  o.push_back(add("value Q_RND(·, sf)", 1, w.value));
+  lerp(o, "value lerp x", 4, vs, wb, false);
+  lerp(o, "value lerp y", 2, vs + wb, wb, false);
+  lerp(o, "value lerp z", 1, vs + 2 * wb, wb, false);
+  o.push_back(add("value Q_RND(·, sf)", 1, wd::sample_value_bits(f)));
   if (e.gradients) {
     const int gs = e.gradient_store_bits;
-    lerp(o, "gradient lerp x", 12, gs, w.wb, true);
-    lerp(o, "gradient lerp y", 6, gs + w.wb, w.wb, true);
-    lerp(o, "gradient lerp z", 3, gs + 2 * w.wb, w.wb, true);
-    o.push_back(add("gradient Q_RND(·, sf)", 3, w.sample_grad));
+    lerp(o, "gradient lerp x", 12, gs, wb, true);
+    lerp(o, "gradient lerp y", 6, gs + wb, wb, true);
+    lerp(o, "gradient lerp z", 3, gs + 2 * wb, wb, true);
+    o.push_back(add("gradient Q_RND(·, sf)", 3, wd::sample_grad_bits(f)));
   }
   return u;
 }
 
-UnitOps classification(const Widths& w, const ref::Elaboration& e) {
+UnitOps classification(const ProfileFields& f, const ref::Elaboration& e) {
   UnitOps u{"classification", "§4", {}, 0, 1};
-  const int entry = e.class_color_fields * w.cb + (e.class_alpha_varies ? w.ab : 0) +
-                    e.class_k_fields * w.kb;
-  const int constant = (3 - e.class_color_fields) * w.cb + (e.class_alpha_varies ? 0 : w.ab) +
-                       (3 - e.class_k_fields) * w.kb;
-  u.ops.push_back(add("address Q_RND(value·2^(tf - vb))", 1, w.tfa + 1));
-  u.ops.push_back(cmp("address clamp", 1, w.tfa + 1));
+  const int entry = e.class_color_fields * f.color_bits +
+                    (e.class_alpha_varies ? f.alpha_bits : 0) + e.class_k_fields * f.k_bits;
+  const int constant = wd::class_entry_bits(f) - entry;
+  u.ops.push_back(add("address Q_RND(value·2^(tf - vb))", 1, wd::class_addr_round_bits(f)));
+  u.ops.push_back(cmp("address clamp", 1, wd::class_addr_round_bits(f)));
   u.ops.push_back(mem(OpKind::Ram, "classification table (fields that vary)", 1, e.class_entries,
                       entry));
   if (constant > 0) u.ops.push_back(reg("constant entry fields", constant));
   return u;
 }
 
-UnitOps reflectance(const Widths& w, const PrecisionProfile& p) {
-  UnitOps u{"reflectance_map", p.rm_bilinear ? "§5.1-5.3, §5.5" : "§5.1-5.4", {}, 0, 1};
+UnitOps reflectance(const ProfileFields& f) {
+  const bool bilinear = wd::rm_bilinear(f);
+  UnitOps u{"reflectance_map", bilinear ? "§5.1-5.3, §5.5" : "§5.1-5.4", {}, 0, 1};
   auto& o = u.ops;
-  o.push_back(mul("gw = g·IS", 3, w.sample_grad, true, w.df + 1, false));
-  o.push_back(add("gw rounding", 3, w.sample_grad));
-  o.push_back(add("N = -gw, |N|", 3, w.rm_den));
-  o.push_back(cmp("major axis", 2, w.sample_grad));
-  o.push_back(mux("N[a], N[b], |N[m]|", 3, w.rm_den, 3));
-  o.push_back(add("N[a] + |N[m]|", 2, w.rm_den));
-  o.push_back(div("t = (N + |N[m]|)·res·2^wb / 2|N[m]|", 2, w.rm_pos, w.rm_den));
-  o.push_back(cmp("cell clamp", 2, w.rm_cell));
-  o.push_back(add("index = face·side² + iv·side + iu", 2, w.rm_index));
-  if (p.rm_bilinear) {
-    const int h = (p.rm_res + 2) / 2;
+  const int g = wd::sample_grad_bits(f);
+  const int n = wd::rm_normal_bits(f);
+  const int entry = wd::rm_entry_bits(f);
+  const int wb = wd::rm_pos_frac_bits(f);
+  o.push_back(mul("gw = g·IS", 3, g, true, wd::rm_scale_bits(f), false));
+  o.push_back(add("gw rounding", 3, g));
+  o.push_back(add("N = -gw, |N|", 3, n));
+  o.push_back(cmp("major axis", 2, wd::rm_magnitude_bits(f)));
+  o.push_back(mux("N[a], N[b], |N[m]|", 3, n, 3));
+  o.push_back(add("N[a] + |N[m]|", 2, n));
+  o.push_back(
+      div("t = (N + |N[m]|)·res·2^wb / 2|N[m]|", 2, wd::rm_pos_bits(f), wd::rm_den_bits(f)));
+  o.push_back(cmp("cell clamp", 2, wd::rm_cell_bits(f)));
+  o.push_back(add("index = face·side² + iv·side + iu", 2, wd::rm_index_bits(f)));
+  if (bilinear) {
     o.push_back(mem(OpKind::Ram, "diffuse + specular corner tables, 4 parity banks each", 8,
-                    6 * h * h, w.rm_entry));
-    o.push_back(mux("corner crossbar", 8, w.rm_entry, 4));
-    o.push_back(add("fu, fv = t - (cell << wb)", 2, w.rm_wb + 1));
+                    wd::rm_bank_entries(f), entry));
+    o.push_back(mux("corner crossbar", 8, entry, 4));
+    o.push_back(add("fu, fv = t - (cell << wb)", 2, wd::rm_blend_weight_bits(f)));
     for (const char* t : {"D", "S"}) {
-      lerp(o, std::string(t) + " lerp u", 2, w.rm_entry, w.rm_wb, false);
-      lerp(o, std::string(t) + " lerp v", 1, w.rm_entry + w.rm_wb, w.rm_wb, false);
-      o.push_back(add(std::string(t) + " Q_RND(·, rf)", 1, w.rm_entry));
+      lerp(o, std::string(t) + " lerp u", 2, entry, wb, false);
+      lerp(o, std::string(t) + " lerp v", 1, wd::rm_lerp_bits(f, 1), wb, false);
+      o.push_back(add(std::string(t) + " Q_RND(·, rf)", 1, entry));
     }
   } else {
-    o.push_back(mem(OpKind::Ram, "diffuse + specular tables", 2, w.rm_entries, w.rm_entry));
+    o.push_back(mem(OpKind::Ram, "diffuse + specular tables", 2, wd::rm_entries(f), entry));
   }
   return u;
 }
 
-UnitOps shader(const Widths& w, bool shaded) {
+UnitOps shader(const ProfileFields& f, bool shaded) {
   UnitOps u{"shader", "§6", {}, 0, 1};
   auto& o = u.ops;
   if (shaded) {
-    o.push_back(mul("kd·D, ks·S", 2, w.kb, false, w.rm_entry, false));
-    o.push_back(add("ka + kd·D + ks·S", 2, w.ri + 2 + w.kb + w.rf));
-    o.push_back(add("I = Q_RND(·, shade_bits)", 1, w.intensity));
-    o.push_back(mul("colour·I", 3, w.cb, false, w.intensity, false));
+    o.push_back(mul("kd·D, ks·S", 2, f.k_bits, false, wd::rm_entry_bits(f), false));
+    o.push_back(add("ka + kd·D + ks·S", 2, wd::intensity_sum_bits(f)));
+    o.push_back(add("I = Q_RND(·, shade_bits)", 1, wd::intensity_bits(f)));
+    o.push_back(mul("colour·I", 3, f.color_bits, false, wd::intensity_bits(f), false));
   }
-  o.push_back(add("c = U(·, shade_bits) rounding", 3, w.shb + 1));
-  o.push_back(cmp("c saturation", 3, w.shb + 1));
+  o.push_back(add("c = U(·, shade_bits) rounding", 3, f.shade_bits + 1));
+  o.push_back(cmp("c saturation", 3, f.shade_bits + 1));
   return u;
 }
 
-UnitOps compositor(const Widths& w) {
+UnitOps compositor(const ProfileFields& f) {
   UnitOps u{"compositor", "§7.1-7.2", {}, 0, 1};
   auto& o = u.ops;
-  o.push_back(add("1 - A", 1, w.acc + 1));
-  o.push_back(mul("w = (1 - A)·alpha", 1, w.acc + 1, false, w.ab, false));
-  o.push_back(add("w rounding", 1, w.acc + 1));
-  o.push_back(mul("w·c", 3, w.acc + 1, false, w.shb, false));
-  o.push_back(add("w·c rounding", 3, w.acc + 1));
-  o.push_back(add("C += w·c, A += w", 4, w.acc + 2));
-  o.push_back(cmp("saturation at 1", 4, w.acc + 2));
-  o.push_back(reg("accumulators C, A", 4 * (w.acc + 1)));
+  const int acc = wd::acc_word_bits(f);
+  o.push_back(add("1 - A", 1, acc));
+  o.push_back(mul("w = (1 - A)·alpha", 1, acc, false, f.alpha_bits, false));
+  o.push_back(add("w rounding", 1, acc));
+  o.push_back(mul("w·c", 3, acc, false, f.shade_bits, false));
+  o.push_back(add("w·c rounding", 3, acc));
+  o.push_back(add("C += w·c, A += w", 4, acc + 1));
+  o.push_back(cmp("saturation at 1", 4, acc + 1));
+  o.push_back(reg("accumulators C, A", 4 * acc));
   return u;
 }
 
-UnitOps ert(const Widths& w) {
+UnitOps ert(const ProfileFields& f) {
   UnitOps u{"ert", "§7.3", {}, 0, 1};
-  u.ops.push_back(cmp("A >= ERT_T", 1, w.acc + 1));
-  u.ops.push_back(reg("ERT_T register", w.acc + 1));
+  u.ops.push_back(cmp("A >= ERT_T", 1, wd::acc_word_bits(f)));
+  u.ops.push_back(reg("ERT_T register", wd::acc_word_bits(f)));
   return u;
 }
 
-UnitOps mip(const Widths& w) {
+UnitOps mip(const ProfileFields& f) {
   UnitOps u{"mip", "§7 MIP", {}, 0, 1};
-  u.ops.push_back(cmp("value > M", 1, w.value));
-  u.ops.push_back(reg("M, RM registers", w.value + w.df + 1));
-  u.ops.push_back(mul("M·RM", 1, w.value, false, w.df + 1, false));
-  u.ops.push_back(add("grey rounding", 1, w.acc + w.vb + 1));
-  u.ops.push_back(cmp("grey saturation", 1, w.acc + w.vb + 1));
+  const int value = wd::sample_value_bits(f);
+  u.ops.push_back(cmp("value > M", 1, value));
+  u.ops.push_back(reg("M, RM registers", value + wd::mip_scale_bits(f)));
+  u.ops.push_back(mul("M·RM", 1, value, false, wd::mip_scale_bits(f), false));
+  u.ops.push_back(add("grey rounding", 1, wd::grey_bits(f)));
+  u.ops.push_back(cmp("grey saturation", 1, wd::grey_bits(f)));
   return u;
 }
 
-UnitOps output(const Widths& w) {
+UnitOps output(const ProfileFields& f) {
   UnitOps u{"output", "§8", {}, 0, 1};
   // x·(2^out_bits - 1) = (x << out_bits) - x: a subtractor, not a multiplier.
-  u.ops.push_back(add("x·(2^ob - 1) = (x << ob) - x", 4, w.acc + 1 + w.ob));
-  u.ops.push_back(add("Q_RND(·, 0)", 4, w.ob + 1));
+  u.ops.push_back(add("x·(2^ob - 1) = (x << ob) - x", 4, wd::acc_word_bits(f) + f.out_bits));
+  u.ops.push_back(add("Q_RND(·, 0)", 4, f.out_bits + 1));
   return u;
 }
 
 // Space leaping (docs/leaping.md, hls/space_leaping_unit.hpp): the block
 // look-up beside the address generator and the leaping stepper's search.
-UnitOps space_leaping(const Widths& w, const ref::Elaboration& e) {
+UnitOps space_leaping(const ProfileFields& f, const ref::Elaboration& e) {
   UnitOps u{"space_leaping", "docs/leaping.md", {}, 0, 1};
   auto& o = u.ops;
   const int lb = std::countr_zero(static_cast<unsigned>(e.leap_block));
-  const int bc = std::max(1, w.a - lb);  // block coordinate bits
+  const int bc = std::max(1, wd::block_coord_bits(f) - lb);  // block coordinates the volume needs
   const int ba = bits_for(std::max(1LL, e.leap_blocks - 1));
+  const int prefix = wd::prefix_count_bits(f);
   // Block look-up: coordinates are wiring (i0 >> lb), then the address.
   o.push_back(mul("by·BX", 1, bc, false, bc, false));
   o.push_back(mul("bz·BXY", 1, bc, false, ba, false));
@@ -301,57 +273,59 @@ UnitOps space_leaping(const Widths& w, const ref::Elaboration& e) {
   o.push_back(mem(OpKind::Ram, "min-max block memory (min, max)", 1,
                   static_cast<int>(e.leap_blocks), 2 * e.value_store_bits));
   // The table addresses of min and max (as §4.1), two prefix reads, the test.
-  o.push_back(add("address Q_RND(min, max)", 2, w.tfa + 1));
-  o.push_back(cmp("address clamp", 2, w.tfa + 1));
+  o.push_back(add("address Q_RND(min, max)", 2, wd::class_addr_round_bits(f)));
+  o.push_back(cmp("address clamp", 2, wd::class_addr_round_bits(f)));
   o.push_back(mem(OpKind::Ram, "opacity prefix table (2 read ports)", 1,
-                  std::max(e.class_entries, 1) + 1, w.tfa + 1));
-  o.push_back(cmp("prefix[hi + 1] = prefix[lo]", 1, w.tfa + 1));
+                  std::max(e.class_entries, 1) + 1, prefix));
+  o.push_back(cmp("prefix[hi + 1] = prefix[lo]", 1, prefix));
   // The leap: leap_bits stages of q + 2^j·s, the candidate's block coordinates
   // (clamp, i0 = LAST) and their comparison with the block's, and the run count.
-  const int stages = std::min(w.count, 10);  // hls::LeapParams::leap_bits
-  o.push_back(add("leap q + 2^j·s", 3 * stages, w.pos));
-  o.push_back(cmp("leap clamp", 6 * stages, w.pos));
-  o.push_back(mux("leap clamp select", 6 * stages, w.pos, 2));
-  o.push_back(cmp("leap i0 = LAST", 3 * stages, w.a));
+  const int stages = wd::leap_bits(f);
+  const int pos = wd::pos_bits(f);
+  const int count = wd::count_bits(f);
+  o.push_back(add("leap q + 2^j·s", 3 * stages, pos));
+  o.push_back(cmp("leap clamp", 6 * stages, pos));
+  o.push_back(mux("leap clamp select", 6 * stages, pos, 2));
+  o.push_back(cmp("leap i0 = LAST", 3 * stages, wd::coord_bits(f)));
   o.push_back(cmp("leap same block", 3 * stages, bc));
-  o.push_back(add("leap run + 2^j", stages, w.count));
-  o.push_back(cmp("leap run + 2^j <= remaining", stages, w.count));
-  o.push_back(mux("leap take", stages, 3 * w.pos + w.count, 2));
+  o.push_back(add("leap run + 2^j", stages, count));
+  o.push_back(cmp("leap run + 2^j <= remaining", stages, count));
+  o.push_back(mux("leap take", stages, 3 * pos + count, 2));
   return u;
 }
 
 // render.jitter: the pixel hash (refmodel/render/jitter.hpp) and k_in + J.
-UnitOps jitter(const Widths& w) {
+UnitOps jitter(const ProfileFields& f) {
   UnitOps u{"jitter", "docs/leaping.md", {}, 0, 1};
   u.ops.push_back(mul("lowbias32 x·C", 2, 32, false, 32, false));
-  u.ops.push_back(add("k_in + J·2^-tf", 1, w.k));
+  u.ops.push_back(add("k_in + J·2^-tf", 1, wd::clip_quotient_bits(f)));
   return u;
 }
 
 // The FIFOs and ray slots of the cycle model's pipeline (rtl_model/pipeline),
 // at the widths of what they carry.
-UnitOps pipeline_buffers(const Widths& w, const ref::Elaboration& e,
+UnitOps pipeline_buffers(const ProfileFields& f, const ref::Elaboration& e,
                          const rtl::pipeline::PipelineConfig& pc,
                          const rtl::pipeline::UnitLatencies& l) {
   UnitOps u{"pipeline_buffers", "rtl_model/pipeline", {}, 0, 1};
   auto& o = u.ops;
   const int slot = bits_for(pc.ray_slots - 1);
   const int word = e.value_store_bits + 3 * e.gradient_store_bits;
-  const int sample = w.value + (e.gradients ? 3 * w.sample_grad : 0) + slot + w.count;
-  o.push_back(mem(OpKind::Fifo, "ray slots (p0, s, n)", 1, pc.ray_slots,
-                  3 * w.pos + 3 * w.step + w.count));
+  const int count = wd::count_bits(f);
+  const int sample =
+      wd::sample_value_bits(f) + (e.gradients ? 3 * wd::sample_grad_bits(f) : 0) + slot + count;
+  o.push_back(mem(OpKind::Fifo, "ray slots (p0, s, n)", 1, pc.ray_slots, ray_state_bits(f)));
   o.push_back(mem(OpKind::Fifo, "sample buffer (8 voxel words, weights, parity)", 1,
-                  pc.sample_buffer, 8 * word + 3 * (w.wb + 1) + 3 + slot + w.count));
+                  pc.sample_buffer, 8 * word + 3 * wd::lerp_weight_bits(f) + 3 + slot + count));
   o.push_back(mem(OpKind::Fifo, "interpolation.out", 1, l.interpolation + pc.fifo_depth, sample));
-  if (e.classification) {
-    const int entry = 3 * w.cb + w.ab + 3 * w.kb;
+  if (e.classification)
     o.push_back(mem(OpKind::Fifo, "classification.out", 1, l.classification + pc.fifo_depth,
-                    sample + entry));
-  }
+                    sample + wd::class_entry_bits(f)));
   if (e.compositor)
     o.push_back(mem(OpKind::Fifo, "shading.out", 1, l.shading + pc.fifo_depth,
-                    3 * w.shb + w.ab + slot + w.count));
-  o.push_back(mem(OpKind::Fifo, "output pixels", 1, pc.output_depth, 4 * w.ob + 2 * w.pixel));
+                    3 * f.shade_bits + f.alpha_bits + slot + count));
+  o.push_back(mem(OpKind::Fifo, "output pixels", 1, pc.output_depth,
+                  4 * f.out_bits + 2 * wd::pixel_bits));
   return u;
 }
 
@@ -382,8 +356,11 @@ const char* to_string(OpKind k) {
 
 std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
                                     const rtl::pipeline::PipelineConfig& pc) {
-  const PrecisionProfile& p = e.profile;
-  const Widths w = widths(p);
+  const ProfileFields f = hls::profile_fields(e.profile);
+  // The cycle model's elaborated latencies, whose defaults are the units' depths
+  // declared next to their kernels (hls::*_depth); the units inside a stage of
+  // the cycle model (rsqrt in the ray set-up, stepping in the address stage, the
+  // shader in the shading stage) are split by those depths.
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
       pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
   std::vector<UnitOps> units;
@@ -393,23 +370,24 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
     units.push_back(std::move(u));
   };
   const int rsqrt = e.perspective ? rtl::pipeline::kRsqrtStages : 0;
-  if (e.perspective) put(geometry_rsqrt(w), rsqrt, l.ray_setup_interval);
-  put(ray_setup(w, e.parallel_origin), l.ray_setup - rsqrt, l.ray_setup_interval);
-  put(stepping(w), 1);
-  put(address_generator(w), l.address - 1);
+  if (e.perspective) put(geometry_rsqrt(f), rsqrt, l.ray_setup_interval);
+  put(ray_setup(f, e.parallel_origin), l.ray_setup - rsqrt, l.ray_setup_interval);
+  put(stepping(f), hls::stepping_depth);
+  put(address_generator(f), l.address - hls::stepping_depth);
   // Beside the address generator: adds its look-up to the requests' latency.
-  if (e.space_leaping) put(space_leaping(w, e), l.leap_lookup);
+  if (e.space_leaping) put(space_leaping(f, e), l.leap_lookup);
   // Beside the direction and rsqrt pipeline, shorter than it: no latency.
-  if (e.jitter) put(jitter(w), 0, l.ray_setup_interval);
-  put(interpolation(w, e), l.interpolation);
-  if (e.classification) put(classification(w, e), l.classification);
-  if (e.reflectance_map) put(reflectance(w, p), l.shading - 1);
-  if (e.shader) put(shader(w, e.reflectance_map), e.reflectance_map ? 1 : l.shading);
-  if (e.compositor) put(compositor(w), 1);
-  if (e.ert) put(ert(w), 0);
-  if (e.mip) put(mip(w), 1);
-  put(output(w), 1);
-  put(pipeline_buffers(w, e, pc, l), 0);
+  if (e.jitter) put(jitter(f), 0, l.ray_setup_interval);
+  put(interpolation(f, e), l.interpolation);
+  if (e.classification) put(classification(f, e), l.classification);
+  if (e.reflectance_map) put(reflectance(f), l.shading - hls::shader_depth);
+  if (e.shader)
+    put(shader(f, e.reflectance_map), e.reflectance_map ? hls::shader_depth : l.shading);
+  if (e.compositor) put(compositor(f), hls::compositor_depth);
+  if (e.ert) put(ert(f), hls::ert_depth);
+  if (e.mip) put(mip(f), hls::mip_depth);
+  put(output(f), hls::output_quantization_depth);
+  put(pipeline_buffers(f, e, pc, l), 0);
   return units;
 }
 
@@ -569,8 +547,9 @@ ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
       pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
   rep.latency_ray_setup = l.ray_setup;
-  rep.latency_sample =
-      l.address + l.leap_lookup + l.interpolation + l.classification + l.shading + 1;
+  // From a sample's address to its composited result (or the MIP register).
+  rep.latency_sample = l.address + l.leap_lookup + l.interpolation + l.classification + l.shading +
+                       (e.mip ? hls::mip_depth : hls::compositor_depth);
   rep.ii = 1;
   return rep;
 }

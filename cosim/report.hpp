@@ -3,13 +3,15 @@
 // latency and initiation interval (issue 6, part 4). The estimation model and
 // its measured error against Yosys are in docs/resources.md.
 //
-// Widths come from the precision profile by the same formulas as the hls
-// Params structs (hls/*_processor.hpp, classification_table.hpp, ...);
-// tests/report/test_report_widths.cpp instantiates those structs for the
-// presets and checks every operand width the report uses against the kernels'
-// types, so the two cannot drift. Which units exist and their table sizes come
-// from the elaboration (refmodel/scene/elaboration.hpp); latencies from the
-// cycle model's elaborated UnitLatencies (rtl_model/pipeline/config.hpp).
+// Widths come from the precision profile through the functions the hls Params
+// structs build their types with (hls/widths.hpp), called on the scene's
+// profile; tests/report/test_report.cpp (ReportWidths) instantiates those
+// structs for the presets and for other profiles and checks every operator
+// width the report lists against the kernels' types. Which units exist and
+// their table sizes come from the elaboration (refmodel/scene/elaboration.hpp);
+// latencies from the cycle model's elaborated UnitLatencies
+// (rtl_model/pipeline/config.hpp), whose defaults are the units' depths declared
+// next to their kernels in hls/ (tests/report/test_unit_depths.cpp).
 #pragma once
 
 #include "cosim/files.hpp"

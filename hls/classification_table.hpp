@@ -17,6 +17,7 @@
 
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
+#include "hls/widths.hpp"
 
 #if VOXCAST_HLS_HOST_CODE
 #include <vector>
@@ -34,18 +35,19 @@ struct ClassificationParams {
   static constexpr int value_bits = P::value_bits;              // vb
   static constexpr int sample_frac_bits = P::sample_frac_bits;  // sf
   static constexpr int addr_bits = P::tf_addr_bits;
-  static constexpr int entries = 1 << addr_bits;
+  static constexpr int entries = widths::class_entries(profile_fields<P>());
   static constexpr int color_bits = P::color_bits;
   static constexpr int alpha_bits = P::alpha_bits;
   static constexpr int k_bits = P::k_bits;
   // Payload bits of one entry (the vizard2 SRAM words add 8 reserved bits, §4.3).
-  static constexpr int entry_bits = 3 * color_bits + alpha_bits + 3 * k_bits;
+  static constexpr int entry_bits = widths::class_entry_bits(profile_fields<P>());
+  static constexpr int sample_value_bits = widths::sample_value_bits(profile_fields<P>());
 
   // The interpolated sample value, vb.sf unsigned (§3.5). A narrower fixed type
   // converts into it exactly.
-  using value_t = ufixed<value_bits + sample_frac_bits, value_bits>;
+  using value_t = ufixed<sample_value_bits, value_bits>;
   // §4.1: the same bits read with the binary point moved: value · 2^(addr_bits - vb).
-  using scaled_value_t = ufixed<value_bits + sample_frac_bits, addr_bits>;
+  using scaled_value_t = ufixed<sample_value_bits, addr_bits>;
   // §4.1: SAT(Q_RND(·, 0), 0, 2^addr_bits - 1) is one conversion into this type.
   using addr_round_t = ufixed<addr_bits, addr_bits, RND, SAT>;
   using addr_t = uint_t<addr_bits>;
@@ -56,8 +58,15 @@ struct ClassificationParams {
   using k_t = ufixed<k_bits, 0>;
 
   static_assert(addr_bits >= 1 && addr_bits <= 20, "tf_addr_bits out of range");
-  static_assert(value_bits + sample_frac_bits <= 64, "sample value wider than 64 bits");
+  static_assert(sample_value_bits <= 64, "sample value wider than 64 bits");
 };
+
+// Pipeline depth (clocks; see hls/geometry_processor.hpp, "Pipeline depths"):
+// §4.1 the address (one rounding, one clamp) 1, §4 the table read 1. classify()
+// is inlined into the sample pipeline (HLS INLINE), and Vitis ignores the
+// pragmas of an inlined function (UG1399, "Inline"), so this depth has no
+// LATENCY pragma until the unit is a level of the hierarchy of its own.
+constexpr int classification_depth = 2;
 
 // ---- 2. The unit ----------------------------------------------------------------------------
 

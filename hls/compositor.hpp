@@ -17,6 +17,7 @@
 #include "hls/shader.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
+#include "hls/widths.hpp"
 
 #if VOXCAST_HLS_HOST_CODE
 #include <ostream>
@@ -29,25 +30,28 @@ namespace voxcast {
 namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
+// The widths are hls/widths.hpp's functions of the profile.
 template <class P>
 struct CompositorParams {
   static constexpr int acc_bits = P::acc_bits;
   static constexpr int out_bits = P::out_bits;
   // C[3] and A: acc_bits fraction bits, one integer bit, in [0, 1] (§7).
-  using acc_t = ufixed<acc_bits + 1, 1>;
+  static constexpr int acc_word_bits = widths::acc_word_bits(profile_fields<P>());
+  using acc_t = ufixed<acc_word_bits, 1>;
   // w = Q_RND((1 - A)·alpha_c, acc_bits) and Q_RND(w·c, acc_bits), both in [0, 1].
-  using weight_t = ufixed<acc_bits + 1, 1, RND>;
+  using weight_t = ufixed<acc_word_bits, 1, RND>;
   using alpha_t = typename ClassificationParams<P>::alpha_t;
   using shade_t = typename ShaderParams<P>::shade_t;
   // MIP: the interpolated value (vb.sf), the RM register Q_RND(1/max_stored, df) <= 1, and
   // Q_RND(M·RM, acc_bits) before its clamp to 1 (M·RM < 2^vb as RM <= 1).
   using value_t = typename ClassificationParams<P>::value_t;
-  using rm_t = ufixed<P::dir_frac_bits + 1, 1>;
-  using grey_t = ufixed<acc_bits + P::value_bits + 1, P::value_bits + 1, RND>;
+  using rm_t = ufixed<widths::mip_scale_bits(profile_fields<P>()), 1>;
+  using grey_t = ufixed<widths::grey_bits(profile_fields<P>()),
+                        widths::grey_int_bits(profile_fields<P>()), RND>;
   // §8: Q_RND(x·(2^out_bits - 1), 0) of x in [0, 1] (the SAT never acts, x <= 1).
   using out_round_t = ufixed<out_bits, out_bits, RND, SAT>;
   using out_t = uint_t<out_bits>;
-  static constexpr unsigned out_max = (1u << out_bits) - 1u;
+  static constexpr unsigned out_max = widths::out_max(profile_fields<P>());
 
   // The widest products: (1 - A)·alpha_c, w·c, M·RM, x·(2^out_bits - 1).
   static_assert(acc_bits + 1 + P::alpha_bits <= 64, "(1 - A) x alpha exceeds 64 bits");
@@ -56,6 +60,17 @@ struct CompositorParams {
                 "M x RM exceeds 64 bits");
   static_assert(out_bits >= 1 && out_bits <= 16, "out_bits out of range");
 };
+
+// Pipeline depths (clocks; see hls/geometry_processor.hpp, "Pipeline depths").
+// §7.1-7.2 the over operator is a one-clock recurrence: the next sample of the
+// same ray reads the A it writes. §7.3 the ERT comparator tests the new A in
+// that clock. §7 MIP: the maximum register, one clock. §8 the output
+// quantization, one clock. These functions are inlined (HLS INLINE), and Vitis
+// ignores an inlined function's pragmas (UG1399, "Inline"): no LATENCY pragmas.
+constexpr int compositor_depth = 1;
+constexpr int ert_depth = 0;
+constexpr int mip_depth = 1;
+constexpr int output_quantization_depth = 1;
 
 // ---- 2. The unit ----------------------------------------------------------------------------
 

@@ -21,6 +21,7 @@
 
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
+#include "hls/widths.hpp"
 #include "refmodel/render/jitter.hpp"
 
 #if VOXCAST_HLS_HOST_CODE
@@ -35,9 +36,10 @@ namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
 // a = addr_bits, pf = pos_frac_bits, df = dir_frac_bits, tf = t_frac_bits,
-// sb = rsqrt_seed_bits. Every integer width below follows from a value range
-// stated next to it; every product and sum between rounding points is exact in
-// the operator's widened result type (docs/pipeline.md, "Notation").
+// sb = rsqrt_seed_bits. Every width is one of hls/widths.hpp's functions of the
+// profile, where the value range that sets it is stated; every product and sum
+// between rounding points is exact in the operator's widened result type
+// (docs/pipeline.md, "Notation").
 template <class P>
 struct GeometryParams {
   static constexpr int a = P::addr_bits;
@@ -45,17 +47,21 @@ struct GeometryParams {
   static constexpr int df = P::dir_frac_bits;
   static constexpr int tf = P::t_frac_bits;
   static constexpr int sb = P::rsqrt_seed_bits;
-  static constexpr int seed_entries = 1 << sb;
+  static constexpr int seed_entries = widths::rsqrt_seed_entries(profile_fields<P>());
 
-  // Pixel coordinates: render.width/height <= 8192 (scene_toml.cpp), so px < 2^13.
-  static constexpr int pixel_bits = 13;
-  // Ray origins (E, O + px·P + py·R) lie within ±2^(a+3) per axis (host-checked,
-  // §0): a + 3 magnitude bits + sign.
-  static constexpr int origin_int_bits = a + 4;
-  // n <= 2^(a+pf) (§1.6): a + pf + 1 bits.
-  static constexpr int count_bits = a + pf + 1;
-  // Bank word address: each bank has ceil(dx/2)·ceil(dy/2)·ceil(dz/2) <= 2^(3a-3) words.
-  static constexpr int word_addr_bits = 3 * (a - 1) > 0 ? 3 * (a - 1) : 1;
+  static constexpr int pixel_bits = widths::pixel_bits;
+  static constexpr int dir_bits = widths::dir_bits(profile_fields<P>());
+  static constexpr int origin_int_bits = widths::origin_int_bits(profile_fields<P>());
+  static constexpr int origin_bits = widths::origin_bits(profile_fields<P>());
+  static constexpr int kreg_bits = widths::kreg_bits(profile_fields<P>());
+  static constexpr int word_addr_bits = widths::word_addr_bits(profile_fields<P>());
+  static constexpr int unit_bits = widths::unit_bits(profile_fields<P>());
+  static constexpr int step_bits = widths::step_bits(profile_fields<P>());
+  static constexpr int clip_int_bits = widths::clip_int_bits(profile_fields<P>());
+  static constexpr int clip_num_bits = widths::clip_num_bits(profile_fields<P>());
+  static constexpr int pos_int_bits = widths::pos_int_bits(profile_fields<P>());
+  static constexpr int pos_bits = widths::pos_bits(profile_fields<P>());
+  static constexpr int count_bits = widths::count_bits(profile_fields<P>());
 
   static_assert(sb <= df,
                 "rsqrt_seed_bits must not exceed dir_frac_bits (the seed index is a "
@@ -65,41 +71,37 @@ struct GeometryParams {
                 "(clip quotients below 2^53 LSBs, docs/pipeline.md §0)");
 
   using pixel_t = uint_t<pixel_bits>;
-  // §0 registers. A, B, C, U and the pixel direction d: |d| < 2 (host-checked at
-  // the four corner pixels; d·d is convex in the pixel), df fraction bits.
-  using dir_t = fixed<df + 2, 2>;
-  using origin_t = fixed<origin_int_bits + pf, origin_int_bits>;  // E, O, P, R, o
-  using kreg_t = ufixed<df + 3, 3>;  // K = step/world_scale <= 4 (step <= 4, world_scale >= 1)
-  using box_t = int_t<a + 1>;        // LO, HI in [0, 2^a); signed so compares are same-sign
-  using coord_t = uint_t<a>;         // voxel index, LAST = dim - 1
-  using dim_t = uint_t<a + 1>;       // dims <= 2^a
-  using half_t = uint_t<a>;          // HX = ceil(dx/2) <= 2^(a-1)
-  using slice_t = uint_t<2 * a>;     // HXY <= 2^(2a-2)
+  // §0 registers: A, B, C, U and the pixel direction d; E, O, P, R and o; K; the box.
+  using dir_t = fixed<dir_bits, widths::dir_int_bits>;
+  using origin_t = fixed<origin_bits, origin_int_bits>;  // E, O, P, R, o
+  using kreg_t = ufixed<kreg_bits, widths::kreg_int_bits>;
+  using box_t = int_t<widths::box_bits(profile_fields<P>())>;      // LO, HI
+  using coord_t = uint_t<widths::coord_bits(profile_fields<P>())>;  // voxel index, LAST
+  using dim_t = uint_t<widths::dim_bits(profile_fields<P>())>;      // dims
+  using half_t = uint_t<widths::half_bits(profile_fields<P>())>;    // HX
+  using slice_t = uint_t<widths::slice_bits(profile_fields<P>())>;  // HXY
   using word_addr_t = uint_t<word_addr_bits>;
 
   // §1.2 rsqrt unit.
-  using n2_t = ufixed<2 * df + 2, 2>;       // d·d < 4, exact (2df fraction bits)
-  using n2_norm_t = ufixed<2 * df + 4, 2>;  // n2·4^e < 1 (e >= -1: 2df + 2 fraction bits)
-  using dnorm_t = fixed<df + 3, 2>;         // d' = d·2^e, |d'| < 1 (df + 1 fraction bits)
-  using m_t = ufixed<df + 1, 1, RND>;       // Q_RND(n2·4^e, df) in [1/4, 1]
-  // Seed entries and y: 1/sqrt(m) in (1, 2] (a few LSBs above 2 after rounding).
-  using y_t = ufixed<df + 2, 2, RND>;
-  using sq_t = ufixed<df + 3, 3, RND>;  // Q_RND(y·y) and Q_RND(m·t): below 4.1 < 8
-  using three_t = ufixed<2, 2>;
-  // y·(3 - t) (fixed<2df+6, 6>) with one more fraction bit, so that halving is exact.
-  using halving_t = fixed<2 * df + 7, 6>;
-  using unit_t = fixed<df + 2, 2, RND>;  // u: |u| <= 1 + a few LSBs
+  using n2_t = ufixed<widths::n2_bits(profile_fields<P>()), widths::n2_int_bits>;  // d·d
+  using n2_norm_t = ufixed<widths::n2_norm_bits(profile_fields<P>()), widths::n2_int_bits>;
+  using dnorm_t = fixed<widths::dnorm_bits(profile_fields<P>()), widths::dnorm_int_bits>;
+  using m_t = ufixed<widths::m_bits(profile_fields<P>()), widths::m_int_bits, RND>;
+  using y_t = ufixed<widths::y_bits(profile_fields<P>()), widths::y_int_bits, RND>;  // seeds, y
+  using sq_t = ufixed<widths::sq_bits(profile_fields<P>()), widths::sq_int_bits, RND>;
+  using three_t = ufixed<2, 2>;  // the constant 3
+  using halving_t = fixed<widths::halving_bits(profile_fields<P>()), widths::halving_int_bits>;
+  using unit_t = fixed<unit_bits, widths::unit_int_bits, RND>;  // u
 
   // §1.3-1.6.
-  using step_t = fixed<pf + 4, 4, RND>;  // s = Q_RND(u·K, pf): |s| <= |u|·K < 4.1
-  // Q_TRN(LO - o, tf): |LO - o| < 2^a + 2^(a+3) < 2^(a+4).
-  using num_t = fixed<a + 5 + tf, a + 5, TRN>;
+  using step_t = fixed<step_bits, widths::step_int_bits, RND>;  // s = Q_RND(u·K, pf)
+  using num_t = fixed<clip_num_bits, clip_int_bits, TRN>;       // Q_TRN(LO - o, tf)
   // ap's quotient type (semantics §5-6): tf fraction bits, truncated toward zero.
   using k_t = decltype(num_t() / step_t());
-  // Q_RND(k_in·s, pf): on a hit |k_in·s[a]| <= max(|LO - o|, |HI - o|) < 2^(a+4).
-  using kstep_t = fixed<a + 5 + pf, a + 5, RND>;
-  // Sample positions: within [LO, HI] up to a fraction of a voxel, LO, HI < 2^a.
-  using pos_t = fixed<a + 2 + pf, a + 2>;
+  static_assert(k_t::width == widths::clip_quotient_bits(profile_fields<P>()),
+                "hls/widths.hpp's clip_quotient_bits is the quotient type's width");
+  using kstep_t = fixed<widths::kstep_bits(profile_fields<P>()), clip_int_bits, RND>;  // k_in·s
+  using pos_t = fixed<pos_bits, pos_int_bits>;  // sample positions
   using count_t = uint_t<count_bits>;
 };
 
@@ -178,12 +180,33 @@ typename GeometryParams<P>::y_t rsqrt_newton(
   return y;
 }
 
+// ---- Pipeline depths ------------------------------------------------------------------------
+// Each unit's depth in clocks at the 100 MHz core clock, one sample (or ray) per
+// clock (VIZARD II runs its core at the SDRAM clock, 2001 paper §2.3), is a
+// constant declared once, next to the unit's kernel (here for the geometry
+// processor, in the other units' headers for theirs; docs/pipeline.md,
+// "Pipeline depths", lists them). The kernel's LATENCY pragma, the cycle model's
+// UnitLatencies (rtl_model/pipeline/config.hpp) and the resource report
+// (cosim/report.cpp) read the constant; tests/report/test_unit_depths.cpp checks
+// that the three agree. The pragmas name plain namespace-scope constants:
+// UG1399 ("Using Constants with Pragmas") allows a const int or constexpr
+// variable as a pragma's value, and says nothing of qualified or
+// template-dependent names. min = max: the tool neither stretches nor shortens
+// the unit, so the cycle model's timing is the design's.
+//
+// The rsqrt unit (docs/pipeline.md §1.2), one multiply or add per clock: d·d
+// (multiply, sum) 2, leading-zero count and shifts 1, seed ROM 1, two Newton
+// steps of three products 6, d'·y 1. A parallel camera has no rsqrt unit: its
+// ray set-up is shorter by these stages.
+constexpr int rsqrt_depth = 11;
+
 // §1.2: u = Q_RND(d·2^e · y, df), the unit direction (u = 0 if d = 0).
 template <class P>
 void normalize_direction(
     const typename GeometryParams<P>::dir_t d[3],
     const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries],
     typename GeometryParams<P>::unit_t u[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = rsqrt_depth max = rsqrt_depth)
   using G = GeometryParams<P>;
   const typename G::n2_t n2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   // Leading-zero count (a priority encoder over the 2df + 2 bits of n2).
@@ -312,11 +335,24 @@ typename GeometryParams<P>::k_t pixel_jitter(const GeometryRegisters<P>& r, int 
   return j;
 }
 
+// The ray set-up without the rsqrt unit (§1.1 or §1.4, §1.3, §1.5-1.6): the
+// pixel's direction or origin, the step vector, the six clip divisions, the
+// comparisons, the sample count and p0. 13 clocks is the cycle model's
+// assumption, not a schedule: the resource report prices each clip division as
+// a fully pipelined restoring divider of k_t's width in quotient bits (48 at
+// kBalanced), one stage per bit, so a vendor tool held to this LATENCY has to
+// use a faster divider or misses it (it then warns and schedules longer,
+// UG1399 "pragma HLS latency"). A new ray every clock either way.
+constexpr int ray_setup_depth = 13;
+constexpr int perspective_ray_setup_depth = ray_setup_depth + rsqrt_depth;
+
 // §1, perspective camera: direction, rsqrt unit, step vector, clip.
 template <class P>
 RaySetup<P> ray_setup_perspective(
     const GeometryRegisters<P>& r,
     const typename GeometryParams<P>::y_t seed[GeometryParams<P>::seed_entries], int px, int py) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = perspective_ray_setup_depth
+                         max = perspective_ray_setup_depth)
   using G = GeometryParams<P>;
   const typename G::pixel_t x = px;
   const typename G::pixel_t y = py;
@@ -332,6 +368,7 @@ RaySetup<P> ray_setup_perspective(
 // §1, parallel camera: no rsqrt unit (u = U).
 template <class P>
 RaySetup<P> ray_setup_parallel(const GeometryRegisters<P>& r, int px, int py) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = ray_setup_depth max = ray_setup_depth)
   using G = GeometryParams<P>;
   const typename G::pixel_t x = px;
   const typename G::pixel_t y = py;
@@ -356,10 +393,15 @@ RaySetup<P> ray_setup(const GeometryRegisters<P>& r,
   return ray_setup_parallel<P>(r, px, py);
 }
 
+// Stepping (§2): one adder per axis, one clock. With the address generator's
+// clock (interpolation_processor.hpp) it is the cycle model's `address` stage.
+constexpr int stepping_depth = 1;
+
 // §2: p += s (exact in pf bits).
 template <class P>
 void step_position(typename GeometryParams<P>::pos_t p[3],
                    const typename GeometryParams<P>::step_t s[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = stepping_depth max = stepping_depth)
   [[gnu::unused]] advance_loop : for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     p[k] += s[k];

@@ -21,6 +21,7 @@
 #include "hls/geometry_processor.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
+#include "hls/widths.hpp"
 
 #if VOXCAST_HLS_HOST_CODE
 #include "refmodel/bittrue/frame_setup.hpp"
@@ -31,7 +32,8 @@ namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
 // vb = value_bits, gb = gradient_bits, gfb = gradient_frac_bits, wb =
-// weight_bits, sf = sample_frac_bits; a, pf as in GeometryParams.
+// weight_bits, sf = sample_frac_bits; a, pf as in GeometryParams. The widths are
+// hls/widths.hpp's functions of the profile.
 template <class P>
 struct InterpolationParams {
   using G = GeometryParams<P>;
@@ -43,37 +45,51 @@ struct InterpolationParams {
   static constexpr int wb = P::weight_bits;
   static constexpr int sf = P::sample_frac_bits;
   static constexpr int banks = 8;
-  // Integer bits (sign included) of a stored gradient component.
-  static constexpr int grad_int_bits = gb - gfb;
-  // ... and of an interpolated one: rounding to sf < gfb bits can carry the
-  // largest stored value 2^(gb-1-gfb) - 2^-gfb up to 2^(gb-1-gfb).
-  static constexpr int sample_grad_int_bits = grad_int_bits + (sf < gfb ? 1 : 0);
-  static constexpr int word_bits = vb + 3 * gb;  // packed voxel word (§3.4)
+  // Integer bits (sign included) of a stored gradient component and of an interpolated one.
+  static constexpr int grad_int_bits = widths::grad_int_bits(profile_fields<P>());
+  static constexpr int sample_grad_int_bits = widths::sample_grad_int_bits(profile_fields<P>());
+  static constexpr int word_bits = widths::voxel_word_bits(profile_fields<P>());  // §3.4
 
   // Value x weight products stay exact and within 64 bits (the clone's fast path).
-  static_assert(gb + 3 * wb + 2 <= 64, "gradient lerp products exceed 64 bits");
+  static_assert(widths::grad_lerp_bits(profile_fields<P>(), 3) + 2 <= 64,
+                "gradient lerp products exceed 64 bits");
 
   using word_addr_t = typename G::word_addr_t;
   using voxel_value_t = uint_t<vb>;               // §3.4 value field
   using voxel_grad_t = fixed<gb, grad_int_bits>;  // §3.4 gradient field
   using packed_word_t = uint_t<word_bits>;
-  using cpos_t = ufixed<a + pf, a>;         // p clamped into [LO, HI] ⊂ [0, 2^a)
-  using frac_t = ufixed<pf + 1, 1>;         // f = p - i0 in [0, 1]
-  using weight_t = ufixed<wb + 1, 1, RND>;  // fq = Q_RND(f, wb) in [0, 1]
-  // Exact lerp results after 1, 2, 3 axes: convex combinations stay in the
-  // range of the stored field, with wb more fraction bits per axis.
-  using vlerp1_t = ufixed<vb + wb, vb>;
-  using vlerp2_t = ufixed<vb + 2 * wb, vb>;
-  using vlerp3_t = ufixed<vb + 3 * wb, vb>;
-  using glerp1_t = fixed<gb + wb, grad_int_bits>;
-  using glerp2_t = fixed<gb + 2 * wb, grad_int_bits>;
-  using glerp3_t = fixed<gb + 3 * wb, grad_int_bits>;
+  using cpos_t = ufixed<widths::cpos_bits(profile_fields<P>()), a>;  // p clamped into [LO, HI]
+  using frac_t = ufixed<widths::cell_frac_bits(profile_fields<P>()), 1>;  // f = p - i0
+  using weight_t = ufixed<widths::lerp_weight_bits(profile_fields<P>()), 1, RND>;  // fq
+  // Exact lerp results after 1, 2, 3 axes.
+  using vlerp1_t = ufixed<widths::value_lerp_bits(profile_fields<P>(), 1), vb>;
+  using vlerp2_t = ufixed<widths::value_lerp_bits(profile_fields<P>(), 2), vb>;
+  using vlerp3_t = ufixed<widths::value_lerp_bits(profile_fields<P>(), 3), vb>;
+  using glerp1_t = fixed<widths::grad_lerp_bits(profile_fields<P>(), 1), grad_int_bits>;
+  using glerp2_t = fixed<widths::grad_lerp_bits(profile_fields<P>(), 2), grad_int_bits>;
+  using glerp3_t = fixed<widths::grad_lerp_bits(profile_fields<P>(), 3), grad_int_bits>;
   // §3.5 results (the rounding happens into the *_rnd_t twins).
-  using value_t = ufixed<vb + sf, vb>;
-  using gradient_t = fixed<sample_grad_int_bits + sf, sample_grad_int_bits>;
-  using value_rnd_t = ufixed<vb + sf, vb, RND>;
-  using gradient_rnd_t = fixed<sample_grad_int_bits + sf, sample_grad_int_bits, RND>;
+  static constexpr int sample_value_bits = widths::sample_value_bits(profile_fields<P>());
+  static constexpr int sample_grad_bits = widths::sample_grad_bits(profile_fields<P>());
+  using value_t = ufixed<sample_value_bits, vb>;
+  using gradient_t = fixed<sample_grad_bits, sample_grad_int_bits>;
+  using value_rnd_t = ufixed<sample_value_bits, vb, RND>;
+  using gradient_rnd_t = fixed<sample_grad_bits, sample_grad_int_bits, RND>;
 };
+
+// Pipeline depths (clocks; see hls/geometry_processor.hpp, "Pipeline depths").
+// The address generator (§3.1-3.3): clamp, i0, the weights and the bank word
+// addresses in one clock. With stepping's clock it is the cycle model's
+// `address` stage, which gives the mapping of the DIMM words to SDRAM bank, row
+// and column (rtl_model/layout) no clock of its own (the model's assumption).
+constexpr int address_generator_depth = 1;
+// The interpolation unit (§3.4-3.5): the crossbar that puts bank j ^ parity's
+// word at corner j (gather, which has no LATENCY pragma of its own yet), one
+// clock, then three lerp levels (interpolation_processor), one clock each, the
+// last with its Q_RND to sf.
+constexpr int crossbar_depth = 1;
+constexpr int lerp_depth = 3;
+constexpr int interpolation_depth = crossbar_depth + lerp_depth;
 
 // ---- 2. Voxel words and bank views ------------------------------------------------------------
 template <class P>
@@ -152,6 +168,8 @@ typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
 template <class P>
 BankAccess<P> address_generator(const GeometryRegisters<P>& r,
                                 const typename GeometryParams<P>::pos_t p[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = address_generator_depth
+                         max = address_generator_depth)
   using G = GeometryParams<P>;
   using I = InterpolationParams<P>;
   BankAccess<P> acc;
@@ -231,6 +249,7 @@ struct Sample {
 template <class P>
 Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
                                   const typename InterpolationParams<P>::weight_t fq[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = lerp_depth max = lerp_depth)
   using I = InterpolationParams<P>;
   typename I::vlerp1_t v1[4];
   typename I::glerp1_t g1[3][4];

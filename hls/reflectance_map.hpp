@@ -19,6 +19,7 @@
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
 #include "hls/units.hpp"
+#include "hls/widths.hpp"
 
 #if VOXCAST_HLS_HOST_CODE
 #include <vector>
@@ -30,72 +31,56 @@
 namespace voxcast {
 namespace hls {
 
-namespace rm_detail {
-// Bits of an unsigned integer that holds every value 0..n (n >= 0; at least 1):
-// C++20's std::bit_width, evaluated at compile time only (widths of types).
-constexpr int bits_for(long long n) {
-  int b = 1;
-  while (b < 63 && (n >> b) > 0) ++b;  // compile time only: no label (C++14 constexpr)
-  return b;
-}
-}  // namespace rm_detail
-
 // ---- 1. Parameters ------------------------------------------------------------------------
+// The widths are hls/widths.hpp's functions of the profile (rm_*).
 template <class P>
 struct ReflectanceParams {
   static constexpr int res = P::rm_res;  // cells per cube-face edge
-  static constexpr int cells = 6 * res * res;
+  static constexpr int cells = widths::rm_cells(profile_fields<P>());
   // §5.5: rm_bilinear reads the entries at the cell's corners, (res + 1)^2 per face;
   // nearest mode (VIZARD II) one entry per cell.
-  static constexpr bool bilinear = P::rm_bilinear != 0;
-  static constexpr int side = bilinear ? res + 1 : res;  // entries per face row
-  static constexpr int entries = 6 * side * side;        // per table
+  static constexpr bool bilinear = widths::rm_bilinear(profile_fields<P>());
+  static constexpr int side = widths::rm_side(profile_fields<P>());        // entries per face row
+  static constexpr int entries = widths::rm_entries(profile_fields<P>());  // per table
   // Fraction bits of the in-cell position (0 in nearest mode: the division gives the cell).
-  static constexpr int wb = bilinear ? P::rm_weight_bits : 0;
+  static constexpr int wb = widths::rm_pos_frac_bits(profile_fields<P>());
   static constexpr int sf = P::sample_frac_bits;
   static constexpr int df = P::dir_frac_bits;
 
-  // Interpolated gradient component (§3.5), the interpolation unit's format: the
-  // stored field has gradient_bits - gradient_frac_bits integer bits (sign
-  // included); one more when sf < gradient_frac_bits, where rounding to sf bits can
-  // carry the largest stored value up to 2^(gradient_bits - gradient_frac_bits - 1).
-  static constexpr int grad_int_bits =
-      P::gradient_bits - P::gradient_frac_bits + (sf < P::gradient_frac_bits ? 1 : 0);
-  using gradient_t = fixed<grad_int_bits + sf, grad_int_bits>;
-  // IS[a] = Q_RND(1/world_scale[a], df) <= 1 (§5.1).
-  using scale_t = ufixed<df + 1, 1>;
+  // Interpolated gradient component (§3.5), the interpolation unit's format.
+  static constexpr int grad_int_bits = widths::sample_grad_int_bits(profile_fields<P>());
+  using gradient_t = fixed<widths::sample_grad_bits(profile_fields<P>()), grad_int_bits>;
+  // §5.1 IS[a] <= 1.
+  using scale_t = ufixed<widths::rm_scale_bits(profile_fields<P>()), 1>;
   // gw = Q_RND(g · IS, sf): |gw| <= |g| (IS <= 1, g on the sf grid), so g's format holds it.
-  using world_gradient_t = fixed<grad_int_bits + sf, grad_int_bits, RND>;
-  // N = -gw needs one integer bit more; |N| <= 2^(grad_int_bits - 1) fits unsigned.
-  using normal_t = fixed<grad_int_bits + 1 + sf, grad_int_bits + 1>;
-  using magnitude_t = ufixed<grad_int_bits + sf, grad_int_bits>;
-  // N[a] + |N[m]| in [0, 2 |N[m]|].
-  using offset_t = ufixed<grad_int_bits + 1 + sf, grad_int_bits + 1>;
+  using world_gradient_t = fixed<widths::sample_grad_bits(profile_fields<P>()), grad_int_bits, RND>;
+  // N = -gw, |N|, and N[a] + |N[m]| in [0, 2 |N[m]|].
+  static constexpr int normal_int_bits = widths::rm_normal_int_bits(profile_fields<P>());
+  using normal_t = fixed<widths::rm_normal_bits(profile_fields<P>()), normal_int_bits>;
+  using magnitude_t = ufixed<widths::rm_magnitude_bits(profile_fields<P>()), grad_int_bits>;
+  using offset_t = ufixed<widths::rm_normal_bits(profile_fields<P>()), normal_int_bits>;
 
-  // §5.3's (§5.5's) integer division on raw values (units of 2^-sf):
-  // numerator (N[a] + |N[m]|) · res · 2^wb, denominator 2 |N[m]|; the quotient
-  // t = floor(position in cells · 2^wb) lies in [0, res · 2^wb].
-  static constexpr int res_bits = rm_detail::bits_for(res);
-  static constexpr int den_bits = grad_int_bits + 1 + sf;
-  static constexpr int num_bits = den_bits + res_bits + wb;
+  // §5.3's (§5.5's) integer division on raw values (units of 2^-sf).
+  static constexpr int res_bits = widths::rm_res_bits(profile_fields<P>());
+  static constexpr int den_bits = widths::rm_den_bits(profile_fields<P>());
+  static constexpr int num_bits = widths::rm_num_bits(profile_fields<P>());
   using den_t = uint_t<den_bits>;
   using num_t = uint_t<num_bits>;
-  using pos_t = uint_t<rm_detail::bits_for(static_cast<long long>(res) << wb)>;  // t
-  static constexpr int cell_bits = rm_detail::bits_for(res - 1);
+  using pos_t = uint_t<widths::rm_pos_bits(profile_fields<P>())>;  // t
+  static constexpr int cell_bits = widths::rm_cell_bits(profile_fields<P>());
   using cell_t = uint_t<cell_bits>;  // iu, iv
-  static constexpr int index_bits = rm_detail::bits_for(entries - 1);
+  static constexpr int index_bits = widths::rm_index_bits(profile_fields<P>());
   using index_t = uint_t<index_bits>;
-  // §5.5: the in-cell position f = t·2^-wb - i in [0, 1] (1 only at the clamped last cell).
-  using weight_t = ufixed<wb + 1, 1>;
+  // §5.5: the in-cell position f = t·2^-wb - i in [0, 1].
+  using weight_t = ufixed<widths::rm_blend_weight_bits(profile_fields<P>()), 1>;
 
   // Table entries (§5.4): rm_int_bits.rm_frac_bits unsigned.
   static constexpr int ri = P::rm_int_bits;
-  static constexpr int entry_bits = ri + P::rm_frac_bits;
+  static constexpr int entry_bits = widths::rm_entry_bits(profile_fields<P>());
   using entry_t = ufixed<entry_bits, ri>;
-  // §5.5's exact blend, as lerps e0 + (e1 - e0)·f: a convex combination of entries stays in
-  // the entries' range with wb more fraction bits per lerp; the result rounds once (RND).
-  using lerp1_t = ufixed<entry_bits + wb, ri>;
-  using lerp2_t = ufixed<entry_bits + 2 * wb, ri>;
+  // §5.5's exact blend, as lerps e0 + (e1 - e0)·f; the result rounds once (RND).
+  using lerp1_t = ufixed<widths::rm_lerp_bits(profile_fields<P>(), 1), ri>;
+  using lerp2_t = ufixed<widths::rm_lerp_bits(profile_fields<P>(), 2), ri>;
   using entry_rnd_t = ufixed<entry_bits, ri, RND>;
 
   // g · IS is the widest product: (grad_int_bits + sf) + (df + 1) bits.
@@ -107,6 +92,16 @@ struct ReflectanceParams {
   static_assert(res >= 1 && res <= 256, "rm_res out of range");
   static_assert(!bilinear || (wb >= 1 && wb <= 12), "rm_weight_bits out of range");
 };
+
+// Pipeline depth (clocks; see hls/geometry_processor.hpp, "Pipeline depths"):
+// §5.1-5.3 the cell (g·IS, N, the major axis, the two divisions, the index) and
+// the table reads (§5.5: with the blend), 3 clocks: the cycle model's assumption
+// (like the ray set-up's divisions, the report prices each division as a
+// pipelined restoring divider, one stage per quotient bit). reflect() is
+// inlined (HLS INLINE), and Vitis ignores an inlined function's pragmas
+// (UG1399, "Inline"): no LATENCY pragma until the unit has a hierarchy level of
+// its own.
+constexpr int reflectance_map_depth = 3;
 
 // ---- 2. The unit ----------------------------------------------------------------------------
 

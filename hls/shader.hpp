@@ -8,28 +8,37 @@
 #include "hls/reflectance_map.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
+#include "hls/widths.hpp"
 
 
 namespace voxcast {
 namespace hls {
 
+// The widths are hls/widths.hpp's functions of the profile (intensity_*).
 template <class P>
 struct ShaderParams {
   static constexpr int shade_bits = P::shade_bits;
-  // ka + kd·D + ks·S < 1 + 2·2^rm_int_bits (ka, kd, ks < 1; D, S < 2^rm_int_bits):
-  // rm_int_bits + 2 integer bits hold it, and its rounding, without saturation.
-  static constexpr int intensity_int_bits = P::rm_int_bits + 2;
-  // The exact sum has k_bits + rm_frac_bits fraction bits.
-  static constexpr int sum_bits = intensity_int_bits + P::k_bits + P::rm_frac_bits;
+  // ka + kd·D + ks·S: its integer bits and the exact sum's width.
+  static constexpr int intensity_int_bits = widths::intensity_int_bits(profile_fields<P>());
+  static constexpr int sum_bits = widths::intensity_sum_bits(profile_fields<P>());
   // I = Q_RND(·, shade_bits) (§6).
-  using intensity_t = ufixed<shade_bits + intensity_int_bits, intensity_int_bits, RND>;
+  using intensity_t =
+      ufixed<widths::intensity_bits(profile_fields<P>()), intensity_int_bits, RND>;
   // c = U(·, shade_bits): one conversion rounds and saturates at 1 - 2^-shade_bits.
   using shade_t = ufixed<shade_bits, 0, RND, SAT>;
   // colour · I, the widest product of the unit.
-  static constexpr int product_bits = P::color_bits + shade_bits + intensity_int_bits;
+  static constexpr int product_bits = widths::shade_product_bits(profile_fields<P>());
 
   static_assert(sum_bits <= 64 && product_bits <= 64, "shader products exceed 64 bits");
 };
+
+// Pipeline depth (clocks; see hls/geometry_processor.hpp, "Pipeline depths"):
+// one clock, shaded (the intensity products kd·D, ks·S and colour·I, the sums and
+// the roundings: the cycle model's assumption) or unshaded (U(colour,
+// shade_bits), one rounding adder); with the reflectance map's clocks the cycle
+// model's `shading` stage. shade() is inlined (HLS INLINE), and Vitis ignores an
+// inlined function's pragmas (UG1399, "Inline"): no LATENCY pragma here.
+constexpr int shader_depth = 1;
 
 // The shaded colour of one sample.
 template <class P>

@@ -33,6 +33,7 @@
 #include "hls/interpolation_processor.hpp"
 #include "hls/pragma.hpp"
 #include "hls/types.hpp"
+#include "hls/widths.hpp"
 
 #if VOXCAST_HLS_HOST_CODE
 #include <string>
@@ -45,35 +46,47 @@ namespace voxcast {
 namespace hls {
 
 // ---- 1. Parameters ------------------------------------------------------------------------
+// The widths are hls/widths.hpp's functions of the profile.
 template <class P>
 struct LeapParams {
   using G = GeometryParams<P>;
   static constexpr int a = P::addr_bits;
   static constexpr int vb = P::value_bits;
   static constexpr int ta = P::tf_addr_bits;
-  static constexpr int entries = 1 << ta;
+  static constexpr int entries = widths::class_entries(profile_fields<P>());
   // The on-chip block memory: 2^15 blocks (32^3: a 256^3 volume in 8^3 blocks,
   // 512^3 in 16^3) of two vb-bit values, 786 kbit at vb = 12. A volume needing
   // more blocks is refused at load (use a larger render.leap_block).
   static constexpr int block_addr_bits = 15;
   static constexpr int max_blocks = 1 << block_addr_bits;
-  // The leap's binary search: leap_bits stages find runs of up to
-  // 2^leap_bits samples. A longer run (a 64-cell block crossed at a small
-  // step) is split into several leaps, each exact, so this bounds the
-  // hardware, not the result: 1024 samples cover an 8^3 block's diagonal at
-  // 16x oversampling (8·sqrt(3)·16 = 222) with room for anisotropic spacing.
-  static constexpr int leap_bits = G::count_bits < 10 ? G::count_bits : 10;
+  // The leap's binary search: leap_bits stages (widths::leap_bits says why at most 10).
+  static constexpr int leap_bits = widths::leap_bits(profile_fields<P>());
 
-  using count_t = uint_t<ta + 1>;            // prefix counts in [0, 2^ta]
-  using lb_t = uint_t<3>;                    // log2 of the block edge, 2..6
-  using bcoord_t = uint_t<a>;                // i0 >> lb < 2^a
-  using baddr_wide_t = uint_t<3 * a + 1>;    // bx + by·BX + bz·BXY before the range check
+  using count_t = uint_t<widths::prefix_count_bits(profile_fields<P>())>;  // prefix counts
+  using lb_t = uint_t<3>;  // log2 of the block edge, 2..6
+  using bcoord_t = uint_t<widths::block_coord_bits(profile_fields<P>())>;  // i0 >> lb
+  using baddr_wide_t = uint_t<widths::block_addr_wide_bits(profile_fields<P>())>;
   using block_addr_t = uint_t<block_addr_bits>;
   using voxel_value_t = typename InterpolationParams<P>::voxel_value_t;
-  // A position plus up to 2^leap_bits steps: |s| < 4.1, so 3 + leap_bits integer bits.
-  using wide_step_t = fixed<P::pos_frac_bits + 4 + leap_bits, 4 + leap_bits>;
-  using wide_pos_t = fixed<P::pos_frac_bits + a + 6 + leap_bits, a + 6 + leap_bits>;
+  // A step and a position plus up to 2^leap_bits steps.
+  using wide_step_t = fixed<widths::leap_step_bits(profile_fields<P>()),
+                            widths::leap_step_int_bits(profile_fields<P>())>;
+  using wide_pos_t = fixed<widths::leap_pos_bits(profile_fields<P>()),
+                           widths::leap_pos_int_bits(profile_fields<P>())>;
 };
+
+// Pipeline depths (clocks; see hls/geometry_processor.hpp, "Pipeline depths").
+// The block look-up beside the address generator (sample_block_empty): the
+// min-max RAM read 1, the two prefix-table reads and their comparison 1. It
+// adds its clocks to every sample's requests.
+constexpr int leap_lookup_depth = 2;
+// The leap's search (leap_run): widths::max_leap_bits compare stages, five to a
+// clock (the cycle model's assumption; every leap costs the same). A leap holds
+// its ray's issue for the look-up and the search.
+constexpr int leap_stages_per_clock = 5;
+constexpr int leap_search_depth =
+    (widths::max_leap_bits + leap_stages_per_clock - 1) / leap_stages_per_clock;
+constexpr int leap_depth = leap_lookup_depth + leap_search_depth;
 
 // ---- 2. Registers and memories -------------------------------------------------------------
 template <class P>
@@ -146,6 +159,7 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
                        typename GeometryParams<P>::pos_t p[3],
                        const typename GeometryParams<P>::step_t s[3], std::uint64_t remaining,
                        const typename LeapParams<P>::bcoord_t b[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = leap_search_depth max = leap_search_depth)
   using G = GeometryParams<P>;
   using L = LeapParams<P>;
   std::uint64_t run = 1;
@@ -180,6 +194,7 @@ template <class P>
 bool sample_block_empty(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
                         const MinMaxMemory<P>& mm, const typename GeometryParams<P>::pos_t p[3],
                         typename LeapParams<P>::bcoord_t b[3]) {
+  VOXCAST_HLS_PRAGMA(HLS LATENCY min = leap_lookup_depth max = leap_lookup_depth)
   block_coords<P>(r, lr, p, b);
   return block_empty<P>(lr, mm.block[block_address<P>(lr, b).to_uint()]);
 }

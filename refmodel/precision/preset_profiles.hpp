@@ -14,17 +14,6 @@
 
 namespace voxcast {
 
-// Every field of PrecisionProfile, in declaration order: X(name) once each.
-#define VOXCAST_PRECISION_PROFILE_FIELDS(X)                                                      \
-  X(addr_bits) X(pos_frac_bits) X(dir_frac_bits) X(rsqrt_seed_bits) X(t_frac_bits)               \
-  X(weight_bits) X(value_bits) X(gradient_bits) X(gradient_frac_bits) X(sample_frac_bits)        \
-  X(tf_addr_bits) X(color_bits) X(alpha_bits) X(k_bits) X(rm_res) X(rm_frac_bits)                \
-  X(rm_int_bits) X(rm_bilinear) X(rm_weight_bits) X(shade_bits) X(acc_bits) X(out_bits)
-#define VOXCAST_HEIDELBERG_PROFILE_FIELDS(X)                                                     \
-  X(addr_bits) X(view_bits) X(coord_frac_bits) X(value_bits) X(weight_bits)                      \
-  X(weight_frac_bits) X(density_bits) X(gradient_bits) X(light_frac_bits) X(cos_frac_bits)       \
-  X(user_weight_bits) X(out_bits)
-
 template <class T>
 constexpr PrecisionProfile profile_value() {
   PrecisionProfile p;

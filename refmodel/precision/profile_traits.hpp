@@ -16,6 +16,20 @@
 // variables, no nested namespace definitions.
 #pragma once
 
+// Every field of PrecisionProfile (refmodel/precision/profile.hpp), in declaration
+// order: X(name) once each. The traits types below have exactly these members;
+// preset_profiles.hpp converts between the two forms with it, and hls/widths.hpp
+// builds its C++14 value of a profile (hls::ProfileFields) from it.
+#define VOXCAST_PRECISION_PROFILE_FIELDS(X)                                                      \
+  X(addr_bits) X(pos_frac_bits) X(dir_frac_bits) X(rsqrt_seed_bits) X(t_frac_bits)               \
+  X(weight_bits) X(value_bits) X(gradient_bits) X(gradient_frac_bits) X(sample_frac_bits)        \
+  X(tf_addr_bits) X(color_bits) X(alpha_bits) X(k_bits) X(rm_res) X(rm_frac_bits)                \
+  X(rm_int_bits) X(rm_bilinear) X(rm_weight_bits) X(shade_bits) X(acc_bits) X(out_bits)
+#define VOXCAST_HEIDELBERG_PROFILE_FIELDS(X)                                                     \
+  X(addr_bits) X(view_bits) X(coord_frac_bits) X(value_bits) X(weight_bits)                      \
+  X(weight_frac_bits) X(density_bits) X(gradient_bits) X(light_frac_bits) X(cos_frac_bits)       \
+  X(user_weight_bits) X(out_bits)
+
 namespace voxcast {
 
 // The VIZARD II card as published (PrecisionProfile's defaults): 9-bit voxel

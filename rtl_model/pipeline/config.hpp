@@ -1,10 +1,14 @@
 // Parameters of the ray-casting pipeline model (rtl_model/pipeline/ray_pipeline.hpp).
 //
-// Latencies are the model's assumptions for an FPGA implementation of the hls
-// units at the 100 MHz core clock (VIZARD II runs its core at the SDRAM clock,
-// 2001 paper §2.3); every unit is pipelined at one sample (or ray) per clock,
-// as hls::march_ray's PIPELINE II=1 states. They move the fill and drain of the
-// pipeline, not its throughput, which the memory sets.
+// Latencies: each unit's pipeline depth is declared once, next to its kernel in
+// hls/ (hls::interpolation_depth and so on; hls/geometry_processor.hpp,
+// "Pipeline depths", says what they are), and UnitLatencies' defaults are those
+// constants; the kernels' HLS LATENCY pragmas and the resource report read the
+// same ones (tests/report/test_unit_depths.cpp). They are the model's
+// assumptions for an FPGA implementation at the 100 MHz core clock; every unit
+// is pipelined at one sample (or ray) per clock, as hls::march_ray's PIPELINE
+// II=1 states. They move the fill and drain of the pipeline, not its
+// throughput, which the memory sets.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +17,12 @@
 #include <utility>
 #include <vector>
 
+#include "hls/classification_table.hpp"
+#include "hls/geometry_processor.hpp"
+#include "hls/interpolation_processor.hpp"
+#include "hls/reflectance_map.hpp"
+#include "hls/shader.hpp"
+#include "hls/space_leaping_unit.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
 #include "rtl_model/sdram/controller.hpp"
 #include "rtl_model/sdram/dimm.hpp"
@@ -53,29 +63,30 @@ IssuePolicy parse_issue_policy(const std::string& name);
 std::vector<std::pair<int, int>> pixel_order(int width, int height, Traversal t, int tile);
 
 struct UnitLatencies {
-  // Ray setup: direction, rsqrt (two Newton steps), six clip divisions
-  // (docs/pipeline.md §1), pipelined; a new ray every `ray_setup_interval`.
-  int ray_setup = 24;
+  // Ray setup of a perspective camera: direction, rsqrt (two Newton steps),
+  // step vector, six clip divisions (docs/pipeline.md §1), pipelined; a new ray
+  // every `ray_setup_interval`.
+  int ray_setup = hls::perspective_ray_setup_depth;
   int ray_setup_interval = 1;
-  // Stepping + address generator + mapping to (bank, row, column) (§2-3.3).
-  int address = 2;
-  // Crossbar + three lerp levels + rounding (§3.5).
-  int interpolation = 4;
-  // Classification SRAM read (§4).
-  int classification = 2;
-  // Reflectance-map address, table read, shader multiplies (§5-6).
-  int shading = 4;
+  // Stepping + address generator (§2-3.3); the mapping to (bank, row, column)
+  // takes no clock of its own.
+  int address = hls::stepping_depth + hls::address_generator_depth;
+  // Crossbar + three lerp levels, the last with its rounding (§3.4-3.5).
+  int interpolation = hls::interpolation_depth;
+  // Classification address and SRAM read (§4).
+  int classification = hls::classification_depth;
+  // Reflectance map (cell, table reads) and shader (§5-6).
+  int shading = hls::reflectance_map_depth + hls::shader_depth;
   // Space leaping (docs/leaping.md), only in a design built with it. Each
-  // sample's block look-up (min-max RAM read, two prefix-table reads and a
-  // subtraction) runs beside the address generator: `leap_lookup` more clocks
+  // sample's block look-up (min-max RAM read, two prefix-table reads and their
+  // comparison) runs beside the address generator: `leap_lookup` more clocks
   // to the requests. A leap over an empty block holds its ray's issue for
-  // `leap` clocks: the look-up, then the binary search of hls::leap_run, whose
-  // ten compare stages (LeapParams::leap_bits) run five to a clock after the
-  // look-up (an assumption of this model; every leap costs the same).
-  int leap_lookup = 2;
-  int leap = 4;
-  // The compositor's accumulation is a one-clock recurrence (§7): one sample
-  // per clock of the same ray.
+  // `leap` clocks: the look-up, then the binary search of hls::leap_run
+  // (hls::leap_search_depth; every leap costs the same).
+  int leap_lookup = hls::leap_lookup_depth;
+  int leap = hls::leap_depth;
+  // The compositor's accumulation is a one-clock recurrence (§7,
+  // hls::compositor_depth): one sample per clock of the same ray.
 };
 
 std::ostream& operator<<(std::ostream& os, const UnitLatencies& l);
@@ -93,11 +104,10 @@ struct ElaboratedUnits {
   bool leaping = false;
 };
 // Stages of the rsqrt unit inside UnitLatencies::ray_setup (docs/pipeline.md
-// §1.2, one multiply or add per clock): d·d (multiply, sum) 2, leading-zero
-// count and shifts 1, seed ROM 1, two Newton steps of three products 6, d'·y 1.
-inline constexpr int kRsqrtStages = 11;
-// The unshaded shader: U(colour, shade_bits), one rounding adder, one clock.
-inline constexpr int kUnshadedShadeStages = 1;
+// §1.2; hls/geometry_processor.hpp lists them).
+inline constexpr int kRsqrtStages = hls::rsqrt_depth;
+// The unshaded shader: U(colour, shade_bits), one rounding adder (hls/shader.hpp).
+inline constexpr int kUnshadedShadeStages = hls::shader_depth;
 UnitLatencies elaborate_latencies(UnitLatencies base, const ElaboratedUnits& units);
 
 struct PipelineConfig {

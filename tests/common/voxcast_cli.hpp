@@ -1,6 +1,6 @@
-// Running the `voxcast` command from the tests, as users and scripts do: its
-// exit status and everything it printed (stdout and stderr). VOXCAST_EXE is
-// the binary under test (tests/CMakeLists.txt).
+// Running the `voxcast` command (or another program: run_command) from the
+// tests, as users and scripts do: its exit status and everything it printed
+// (stdout and stderr). VOXCAST_EXE is the binary under test (tests/CMakeLists.txt).
 #pragma once
 
 #include <sys/wait.h>
@@ -16,10 +16,10 @@ struct Command {
   std::string output;  // stdout and stderr
 };
 
-// `prefix` goes before the program, e.g. "env PATH=/nonexistent".
-inline Command run_voxcast(const std::string& args, const std::string& prefix = "") {
+// Any command line, through the shell.
+inline Command run_command(const std::string& command) {
   Command r;
-  const std::string cmd = prefix + " " + std::string(VOXCAST_EXE) + " " + args + " 2>&1";
+  const std::string cmd = command + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf{};
@@ -27,6 +27,11 @@ inline Command run_voxcast(const std::string& args, const std::string& prefix = 
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+// `prefix` goes before the program, e.g. "env PATH=/nonexistent".
+inline Command run_voxcast(const std::string& args, const std::string& prefix = "") {
+  return run_command(prefix + " " + std::string(VOXCAST_EXE) + " " + args);
 }
 
 }  // namespace voxcast::test

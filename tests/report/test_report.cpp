@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <map>
+#include <ostream>
 #include <set>
 #include <string>
 
@@ -15,6 +18,7 @@
 #include "hls/interpolation_processor.hpp"
 #include "hls/reflectance_map.hpp"
 #include "hls/shader.hpp"
+#include "hls/space_leaping_unit.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/precision/preset_profiles.hpp"
 #include "refmodel/precision/presets.hpp"
@@ -167,6 +171,12 @@ TEST(Elaboration, ThroughTheSceneFile) {
 }
 
 // ---- The report's widths are the kernels' widths ------------------------------------------
+// The report sizes its operators with hls/widths.hpp's functions, as the hls
+// Params structs size their types; here every width of every operator the
+// report lists, for a design with every unit, is checked against the kernels'
+// own types (T::width) and the cycle model's configuration, for the presets
+// and for profiles no preset has. An operator without an expectation here
+// fails, so a new operator is checked from its first day.
 
 const Op& find_op(const std::vector<cosim::UnitOps>& units, const std::string& what) {
   for (const auto& u : units)
@@ -184,63 +194,306 @@ ref::Elaboration full(const PrecisionProfile& p) {
   return e;
 }
 
-template <PrecisionProfile P>
-void expect_kernel_widths() {
-  using G = hls::GeometryParams<ProfileTraits<P>>;
-  using I = hls::InterpolationParams<ProfileTraits<P>>;
-  using R = hls::ReflectanceParams<ProfileTraits<P>>;
-  using S = hls::ShaderParams<ProfileTraits<P>>;
-  using C = hls::CompositorParams<ProfileTraits<P>>;
-  using K = hls::ClassificationParams<ProfileTraits<P>>;
-  const auto u = cosim::unit_operators(full(P));
-  EXPECT_EQ(find_op(u, "s = u·K").a, G::unit_t::width);
-  EXPECT_EQ(find_op(u, "s = u·K").b, G::kreg_t::width);
-  EXPECT_EQ(find_op(u, "n2 = d·d").a, G::dir_t::width);
-  EXPECT_EQ(find_op(u, "rsqrt seed ROM").a, G::seed_entries);
-  EXPECT_EQ(find_op(u, "rsqrt seed ROM").b, G::y_t::width);
-  EXPECT_EQ(find_op(u, "Newton: m·t").a, G::m_t::width);
-  EXPECT_EQ(find_op(u, "Newton: m·t").b, G::sq_t::width);
-  EXPECT_EQ(find_op(u, "u = d'·y").a, G::dnorm_t::width);
-  EXPECT_EQ(find_op(u, "LO - o, HI - o").a, G::num_t::width);
-  EXPECT_EQ(find_op(u, "k = (LO|HI - o) / s").a, G::k_t::width);
-  EXPECT_EQ(find_op(u, "k = (LO|HI - o) / s").b, G::step_t::width);
-  EXPECT_EQ(find_op(u, "k_in·s").a, G::k_t::width);
-  EXPECT_EQ(find_op(u, "p += s").a, G::pos_t::width);
-  EXPECT_EQ(find_op(u, "n = k_out - k_in + 1").a, G::count_t::width);
-  EXPECT_EQ(find_op(u, "base word address").a, I::word_addr_t::width);
-  EXPECT_EQ(find_op(u, "crossbar: corner j = bank j ^ parity").a, I::word_bits);
-  EXPECT_EQ(find_op(u, "value lerp x: (v1 - v0)·f").b, I::weight_t::width);
-  EXPECT_EQ(find_op(u, "value lerp z: v0 + ·").a, I::vlerp3_t::width);
-  EXPECT_EQ(find_op(u, "value Q_RND(·, sf)").a, I::value_t::width);
-  EXPECT_EQ(find_op(u, "gradient Q_RND(·, sf)").a, I::gradient_t::width);
-  EXPECT_EQ(find_op(u, "gradient lerp x: (v1 - v0)·f").a, I::gb + 1);
-  EXPECT_EQ(find_op(u, "classification table (fields that vary)").a, K::entries);
-  EXPECT_EQ(find_op(u, "gw = g·IS").a, R::gradient_t::width);
-  EXPECT_EQ(find_op(u, "gw = g·IS").b, R::scale_t::width);
-  EXPECT_EQ(find_op(u, "N = -gw, |N|").a, R::normal_t::width);
-  EXPECT_EQ(find_op(u, "t = (N + |N[m]|)·res·2^wb / 2|N[m]|").a, R::pos_t::width);
-  EXPECT_EQ(find_op(u, "t = (N + |N[m]|)·res·2^wb / 2|N[m]|").b, R::den_t::width);
-  EXPECT_EQ(find_op(u, "index = face·side² + iv·side + iu").a, R::index_t::width);
-  if constexpr (R::bilinear) {
-    EXPECT_EQ(find_op(u, "D lerp v: v0 + ·").a, R::lerp2_t::width);
-    EXPECT_EQ(find_op(u, "D lerp u: (v1 - v0)·f").b, R::weight_t::width);
-  } else {
-    EXPECT_EQ(find_op(u, "diffuse + specular tables").a, R::entries);
-    EXPECT_EQ(find_op(u, "diffuse + specular tables").b, R::entry_t::width);
+// Every unit the report knows, at the profile's full field widths; MIP or not
+// (MIP has no classification or shading stages, so their FIFOs are shorter).
+ref::Elaboration every_unit(const PrecisionProfile& p, bool mip) {
+  ref::Elaboration e = full(p);
+  e.parallel_origin = true;
+  e.mip = mip;
+  e.space_leaping = true;
+  e.leap_block = 8;
+  e.leap_blocks = 512;
+  e.jitter = true;
+  // Two colours and one k vary: the other fields are registers.
+  e.class_color_fields = 2;
+  e.class_alpha_varies = false;
+  e.class_k_fields = 1;
+  return e;
+}
+
+// An operator's expected shape: its widths (b = 0 where it has one) and, where
+// the profile sets it, its count (-1: not checked).
+struct Shape {
+  int a = 0, b = 0, count = -1;
+};
+bool operator==(const Shape& s, const Op& op) {
+  return s.a == op.a && s.b == op.b && (s.count < 0 || s.count == op.count);
+}
+std::ostream& operator<<(std::ostream& os, const Shape& s) {
+  return os << "{" << s.a << ", " << s.b << ", count " << s.count << "}";
+}
+
+int bits_for(long long n) {  // as std::bit_width, at least 1
+  return n < 1 ? 1 : static_cast<int>(std::bit_width(static_cast<unsigned long long>(n)));
+}
+
+// (unit, operator) -> shape, from the kernels' types of profile P.
+template <class P>
+std::map<std::pair<std::string, std::string>, Shape> kernel_shapes(const ref::Elaboration& e) {
+  using G = hls::GeometryParams<P>;
+  using I = hls::InterpolationParams<P>;
+  using K = hls::ClassificationParams<P>;
+  using R = hls::ReflectanceParams<P>;
+  using S = hls::ShaderParams<P>;
+  using C = hls::CompositorParams<P>;
+  using L = hls::LeapParams<P>;
+  const rtl::pipeline::PipelineConfig pc;
+  const int pixel = G::pixel_t::width, dir = G::dir_t::width, origin = G::origin_t::width;
+  const int unit = G::unit_t::width, step = G::step_t::width, k = G::k_t::width;
+  const int pos = G::pos_t::width, count = G::count_t::width, coord = G::coord_t::width;
+  const int y = G::y_t::width, sq = G::sq_t::width, dnorm = G::dnorm_t::width;
+  const int weight = I::weight_t::width;
+  const int word = I::packed_word_t::width;
+  const int entry = R::entry_t::width;
+  const int acc = C::acc_t::width;
+  const int slot = bits_for(pc.ray_slots - 1);
+  const int sample = I::value_t::width + 3 * I::gradient_t::width + slot + count;
+  const int bc = std::max(1, static_cast<int>(L::bcoord_t::width) - 3);  // leap_block 8
+  const int ba = bits_for(e.leap_blocks - 1);
+  const int h = (R::res + 2) / 2;  // ceil((rm_res + 1) / 2)
+  std::map<std::pair<std::string, std::string>, Shape> m = {
+      // §1.1-1.2
+      {{"ray_direction+rsqrt", "px·B, py·C"}, {pixel, dir}},
+      {{"ray_direction+rsqrt", "d = A + px·B + py·C"}, {dir + pixel + 2}},
+      {{"ray_direction+rsqrt", "n2 = d·d"}, {dir, dir}},
+      {{"ray_direction+rsqrt", "n2 sum"}, {2 * dir}},
+      {{"ray_direction+rsqrt", "leading-zero count of n2"},
+       {bits_for(G::n2_t::width), G::n2_t::width}},
+      {{"ray_direction+rsqrt", "d' = d·2^e (shifter)"}, {dnorm, G::df + 1}},
+      {{"ray_direction+rsqrt", "n2·4^e (shifter)"}, {G::n2_norm_t::width, G::df + 1}},
+      {{"ray_direction+rsqrt", "rsqrt seed ROM"}, {G::seed_entries, y}},
+      {{"ray_direction+rsqrt", "Newton: y·y"}, {y, y}},
+      {{"ray_direction+rsqrt", "Newton: m·t"}, {G::m_t::width, sq}},
+      {{"ray_direction+rsqrt", "Newton: 3 - t"}, {sq + 1}},
+      {{"ray_direction+rsqrt", "Newton: y·(3 - t)"}, {y, sq + 1}},
+      {{"ray_direction+rsqrt", "Newton: rounding"}, {sq}},
+      {{"ray_direction+rsqrt", "u = d'·y"}, {dnorm, y}},
+      {{"ray_direction+rsqrt", "u rounding"}, {unit}},
+      // §1.3-1.6
+      {{"ray_setup", "s = u·K"}, {unit, G::kreg_t::width}},
+      {{"ray_setup", "s rounding"}, {step}},
+      {{"ray_setup", "px·P, py·R"}, {pixel, origin}},
+      {{"ray_setup", "o = O + px·P + py·R"}, {origin + pixel + 2}},
+      {{"ray_setup", "LO - o, HI - o"}, {G::num_t::width}},
+      {{"ray_setup", "k = (LO|HI - o) / s"}, {k, step}},
+      {{"ray_setup", "k_lo < k_hi, k_near > k_in, k_far < k_out, k_in < 0, k_in > k_out"}, {k}},
+      {{"ray_setup", "k_near, k_far, k_in, k_out"}, {k, 2}},
+      {{"ray_setup", "s = 0 axis: LO <= o <= HI"}, {origin}},
+      {{"ray_setup", "n = k_out - k_in + 1"}, {count}},
+      {{"ray_setup", "k_in·s"}, {k, step}},
+      {{"ray_setup", "p0 = o + Q_RND(k_in·s)"}, {pos}},
+      // §2
+      {{"stepping", "p += s"}, {pos}},
+      {{"stepping", "sample counter"}, {count}},
+      {{"stepping", "counter = n"}, {count}},
+      {{"stepping", "p, s, n of the ray"}, {3 * pos + 3 * step + count}},
+      // §3.1-3.3
+      {{"address_generator", "clamp p into [LO, HI]"}, {pos}},
+      {{"address_generator", "clamp select"}, {pos, 2}},
+      {{"address_generator", "i0 = LAST"}, {coord}},
+      {{"address_generator", "i0 - 1"}, {coord}},
+      {{"address_generator", "f = p - i0"}, {I::frac_t::width}},
+      {{"address_generator", "fq = Q_RND(f, wb)"}, {weight}},
+      {{"address_generator", "(i0y>>1)·HX"}, {std::max(1, coord - 1), G::half_t::width}},
+      {{"address_generator", "(i0z>>1)·HXY"}, {std::max(1, coord - 1), G::slice_t::width}},
+      {{"address_generator", "base word address"}, {G::word_addr_t::width}},
+      {{"address_generator", "odd-axis increments"}, {G::word_addr_t::width, 2}},
+      {{"address_generator", "bank addresses (+1, +HX, +HXY)"}, {G::word_addr_t::width}},
+      // §3.4-3.5: lerps v0 + (v1 - v0)·f; a signed lerp's sum has one bit more.
+      {{"interpolation", "crossbar: corner j = bank j ^ parity"}, {word, 8}},
+      {{"interpolation", "value lerp x: v1 - v0"}, {I::vb + 1}},
+      {{"interpolation", "value lerp x: (v1 - v0)·f"}, {I::vb + 1, weight}},
+      {{"interpolation", "value lerp x: v0 + ·"}, {I::vlerp1_t::width}},
+      {{"interpolation", "value lerp y: v1 - v0"}, {I::vlerp1_t::width + 1}},
+      {{"interpolation", "value lerp y: (v1 - v0)·f"}, {I::vlerp1_t::width + 1, weight}},
+      {{"interpolation", "value lerp y: v0 + ·"}, {I::vlerp2_t::width}},
+      {{"interpolation", "value lerp z: v1 - v0"}, {I::vlerp2_t::width + 1}},
+      {{"interpolation", "value lerp z: (v1 - v0)·f"}, {I::vlerp2_t::width + 1, weight}},
+      {{"interpolation", "value lerp z: v0 + ·"}, {I::vlerp3_t::width}},
+      {{"interpolation", "value Q_RND(·, sf)"}, {I::value_t::width}},
+      {{"interpolation", "gradient lerp x: v1 - v0"}, {I::gb + 1}},
+      {{"interpolation", "gradient lerp x: (v1 - v0)·f"}, {I::gb + 1, weight}},
+      {{"interpolation", "gradient lerp x: v0 + ·"}, {I::glerp1_t::width + 1}},
+      {{"interpolation", "gradient lerp y: v1 - v0"}, {I::glerp1_t::width + 1}},
+      {{"interpolation", "gradient lerp y: (v1 - v0)·f"}, {I::glerp1_t::width + 1, weight}},
+      {{"interpolation", "gradient lerp y: v0 + ·"}, {I::glerp2_t::width + 1}},
+      {{"interpolation", "gradient lerp z: v1 - v0"}, {I::glerp2_t::width + 1}},
+      {{"interpolation", "gradient lerp z: (v1 - v0)·f"}, {I::glerp2_t::width + 1, weight}},
+      {{"interpolation", "gradient lerp z: v0 + ·"}, {I::glerp3_t::width + 1}},
+      {{"interpolation", "gradient Q_RND(·, sf)"}, {I::gradient_t::width}},
+      // §4: two colours and one k in the table, the rest registers.
+      {{"classification", "address Q_RND(value·2^(tf - vb))"}, {K::addr_t::width + 1}},
+      {{"classification", "address clamp"}, {K::addr_t::width + 1}},
+      {{"classification", "classification table (fields that vary)"},
+       {K::entries, 2 * K::color_t::width + K::k_t::width}},
+      {{"classification", "constant entry fields"},
+       {K::color_t::width + K::alpha_t::width + 2 * K::k_t::width}},
+      // §5.1-5.3
+      {{"reflectance_map", "gw = g·IS"}, {R::gradient_t::width, R::scale_t::width}},
+      {{"reflectance_map", "gw rounding"}, {R::world_gradient_t::width}},
+      {{"reflectance_map", "N = -gw, |N|"}, {R::normal_t::width}},
+      {{"reflectance_map", "major axis"}, {R::magnitude_t::width}},
+      {{"reflectance_map", "N[a], N[b], |N[m]|"}, {R::normal_t::width, 3}},
+      {{"reflectance_map", "N[a] + |N[m]|"}, {R::offset_t::width}},
+      {{"reflectance_map", "t = (N + |N[m]|)·res·2^wb / 2|N[m]|"},
+       {R::pos_t::width, R::den_t::width}},
+      {{"reflectance_map", "cell clamp"}, {R::cell_t::width}},
+      {{"reflectance_map", "index = face·side² + iv·side + iu"}, {R::index_t::width}},
+      // §5.4 nearest, or §5.5 bilinear: four parity banks of 6·h² corners per table.
+      {{"reflectance_map", "diffuse + specular tables"}, {R::entries, entry}},
+      {{"reflectance_map", "diffuse + specular corner tables, 4 parity banks each"},
+       {6 * h * h, entry}},
+      {{"reflectance_map", "corner crossbar"}, {entry, 4}},
+      {{"reflectance_map", "fu, fv = t - (cell << wb)"}, {R::weight_t::width}},
+      // §6
+      {{"shader", "kd·D, ks·S"}, {K::k_t::width, entry}},
+      {{"shader", "ka + kd·D + ks·S"}, {S::sum_bits}},
+      {{"shader", "I = Q_RND(·, shade_bits)"}, {S::intensity_t::width}},
+      {{"shader", "colour·I"}, {K::color_t::width, S::intensity_t::width}},
+      {{"shader", "c = U(·, shade_bits) rounding"}, {S::shade_t::width + 1}},
+      {{"shader", "c saturation"}, {S::shade_t::width + 1}},
+      // §7-8
+      {{"compositor", "1 - A"}, {acc}},
+      {{"compositor", "w = (1 - A)·alpha"}, {acc, C::alpha_t::width}},
+      {{"compositor", "w rounding"}, {C::weight_t::width}},
+      {{"compositor", "w·c"}, {C::weight_t::width, C::shade_t::width}},
+      {{"compositor", "w·c rounding"}, {C::weight_t::width}},
+      {{"compositor", "C += w·c, A += w"}, {acc + 1}},
+      {{"compositor", "saturation at 1"}, {acc + 1}},
+      {{"compositor", "accumulators C, A"}, {4 * acc}},
+      {{"ert", "A >= ERT_T"}, {acc}},
+      {{"ert", "ERT_T register"}, {acc}},
+      {{"mip", "value > M"}, {C::value_t::width}},
+      {{"mip", "M, RM registers"}, {C::value_t::width + C::rm_t::width}},
+      {{"mip", "M·RM"}, {C::value_t::width, C::rm_t::width}},
+      {{"mip", "grey rounding"}, {C::grey_t::width}},
+      {{"mip", "grey saturation"}, {C::grey_t::width}},
+      {{"output", "x·(2^ob - 1) = (x << ob) - x"}, {acc + C::out_bits}},
+      {{"output", "Q_RND(·, 0)"}, {C::out_t::width + 1}},
+      // Space leaping: blocks of 8^3 (lb = 3), leap_bits search stages.
+      {{"space_leaping", "by·BX"}, {bc, bc}},
+      {{"space_leaping", "bz·BXY"}, {bc, ba}},
+      {{"space_leaping", "block address"}, {ba}},
+      {{"space_leaping", "min-max block memory (min, max)"},
+       {static_cast<int>(e.leap_blocks), 2 * L::voxel_value_t::width}},
+      {{"space_leaping", "address Q_RND(min, max)"}, {K::addr_t::width + 1}},
+      {{"space_leaping", "address clamp"}, {K::addr_t::width + 1}},
+      {{"space_leaping", "opacity prefix table (2 read ports)"},
+       {K::entries + 1, L::count_t::width}},
+      {{"space_leaping", "prefix[hi + 1] = prefix[lo]"}, {L::count_t::width}},
+      {{"space_leaping", "leap q + 2^j·s"}, {pos, 0, 3 * L::leap_bits}},
+      {{"space_leaping", "leap clamp"}, {pos, 0, 6 * L::leap_bits}},
+      {{"space_leaping", "leap clamp select"}, {pos, 2, 6 * L::leap_bits}},
+      {{"space_leaping", "leap i0 = LAST"}, {coord, 0, 3 * L::leap_bits}},
+      {{"space_leaping", "leap same block"}, {bc, 0, 3 * L::leap_bits}},
+      {{"space_leaping", "leap run + 2^j"}, {count, 0, L::leap_bits}},
+      {{"space_leaping", "leap run + 2^j <= remaining"}, {count, 0, L::leap_bits}},
+      {{"space_leaping", "leap take"}, {3 * pos + count, 2, L::leap_bits}},
+      {{"jitter", "lowbias32 x·C"}, {32, 32}},
+      {{"jitter", "k_in + J·2^-tf"}, {k}},
+      // The cycle model's FIFOs: depth = the stage's latency + the skid.
+      {{"pipeline_buffers", "ray slots (p0, s, n)"}, {pc.ray_slots, 3 * pos + 3 * step + count}},
+      {{"pipeline_buffers", "sample buffer (8 voxel words, weights, parity)"},
+       {pc.sample_buffer, 8 * word + 3 * weight + 3 + slot + count}},
+      // (MIP has no classification or shading stages.)
+      {{"pipeline_buffers", "interpolation.out"},
+       {pc.latency.interpolation + pc.fifo_depth, sample}},
+      {{"pipeline_buffers", "classification.out"},
+       {(e.mip ? 0 : pc.latency.classification) + pc.fifo_depth, sample + K::entry_bits}},
+      {{"pipeline_buffers", "shading.out"},
+       {(e.mip ? 0 : pc.latency.shading) + pc.fifo_depth,
+        3 * C::shade_t::width + C::alpha_t::width + slot + count}},
+      {{"pipeline_buffers", "output pixels"}, {pc.output_depth, 4 * C::out_t::width + 2 * pixel}},
+  };
+  // §5.5 the blend of each table: lerps along u and v, one rounding.
+  for (const std::string t : {"D", "S"}) {
+    const int l1 = R::lerp1_t::width, w = R::weight_t::width;
+    m[{"reflectance_map", t + " lerp u: v1 - v0"}] = {entry + 1};
+    m[{"reflectance_map", t + " lerp u: (v1 - v0)·f"}] = {entry + 1, w};
+    m[{"reflectance_map", t + " lerp u: v0 + ·"}] = {l1};
+    m[{"reflectance_map", t + " lerp v: v1 - v0"}] = {l1 + 1};
+    m[{"reflectance_map", t + " lerp v: (v1 - v0)·f"}] = {l1 + 1, w};
+    m[{"reflectance_map", t + " lerp v: v0 + ·"}] = {R::lerp2_t::width};
+    m[{"reflectance_map", t + " Q_RND(·, rf)"}] = {entry};
   }
-  EXPECT_EQ(find_op(u, "kd·D, ks·S").a, K::k_t::width);
-  EXPECT_EQ(find_op(u, "kd·D, ks·S").b, R::entry_t::width);
-  EXPECT_EQ(find_op(u, "colour·I").b, S::intensity_t::width);
-  EXPECT_EQ(find_op(u, "w = (1 - A)·alpha").a, C::acc_t::width);
-  EXPECT_EQ(find_op(u, "w = (1 - A)·alpha").b, C::alpha_t::width);
-  EXPECT_EQ(find_op(u, "w·c").b, C::shade_t::width);
-  EXPECT_EQ(find_op(u, "A >= ERT_T").a, C::acc_t::width);
+  return m;
+}
+
+template <PrecisionProfile V>
+void expect_kernel_widths() {
+  using P = ProfileTraits<V>;
+  for (const bool mip : {false, true}) {
+    const ref::Elaboration e = every_unit(V, mip);
+    const auto shapes = kernel_shapes<P>(e);
+    std::set<std::string> units;
+    int checked = 0;
+    for (const auto& u : cosim::unit_operators(e)) {
+      units.insert(u.name);
+      for (const Op& op : u.ops) {
+        const auto it = shapes.find({u.name, op.what});
+        if (it == shapes.end()) {
+          ADD_FAILURE() << u.name << ": operator \"" << op.what << "\" has no expected shape";
+          continue;
+        }
+        EXPECT_TRUE(it->second == op) << u.name << ": " << op.what << ": expected " << it->second
+                                      << ", report {" << op.a << ", " << op.b << ", count "
+                                      << op.count << "} (mip " << mip << ")";
+        ++checked;
+      }
+    }
+    // Every unit is in the design (MIP only in the MIP design).
+    EXPECT_EQ(units.size(), mip ? 15u : 14u);
+    EXPECT_GT(checked, 100);
+  }
+}
+
+constexpr PrecisionProfile odd_profile(int variant) {
+  PrecisionProfile p = kBalanced;
+  if (variant == 1) {
+    // Nearest reflectance map with integer bits; stored gradients finer than the
+    // samples (one more integer bit after rounding); a small volume.
+    p.rm_bilinear = 0;
+    p.rm_res = 12;
+    p.rm_int_bits = 1;
+    p.gradient_frac_bits = 5;
+    p.sample_frac_bits = 2;
+    p.addr_bits = 7;
+    p.pos_frac_bits = 3;
+    p.tf_addr_bits = 5;
+  } else if (variant == 2) {
+    // A tiny volume (one word address bit, fewer than 10 leap stages), an odd
+    // bilinear grid, narrow everything.
+    p = kVizard2;
+    p.rm_bilinear = 1;
+    p.rm_res = 5;
+    p.rm_weight_bits = 3;
+    p.addr_bits = 1;
+    p.pos_frac_bits = 2;
+    p.t_frac_bits = 4;
+    p.weight_bits = 2;
+    p.out_bits = 12;
+  } else {
+    // Wide words: 16-bit values and gradients with more fraction bits than the samples keep.
+    p = kPrecise;
+    p.gradient_frac_bits = 12;
+    p.sample_frac_bits = 6;
+    p.acc_bits = 24;
+    p.shade_bits = 10;
+    p.k_bits = 5;
+  }
+  return p;
 }
 
 TEST(ReportWidths, EqualTheKernelTypesForEveryPreset) {
   expect_kernel_widths<kVizard2>();
   expect_kernel_widths<kBalanced>();
   expect_kernel_widths<kPrecise>();
+}
+
+TEST(ReportWidths, EqualTheKernelTypesForProfilesNoPresetHas) {
+  expect_kernel_widths<odd_profile(1)>();
+  expect_kernel_widths<odd_profile(2)>();
+  expect_kernel_widths<odd_profile(3)>();
 }
 
 TEST(ReportWidths, FollowAProfileChange) {

@@ -4,6 +4,7 @@
 //
 //   voxcast_synth_lint --top NAME [--top NAME...] --root DIR [--root DIR...]
 //                      [--exempt PATH...] [--region NAME --port NAME...] [--verbose]
+//                      [--latencies]
 //                      -- COMPILER_ARGS... FILE.cpp
 //
 // The translation unit is parsed as the synthesis compile sees it (the caller
@@ -44,6 +45,11 @@
 //                       region reads or writes a mutable global variable. The
 //                       region's other arguments are the top's values and its
 //                       locals (the on-chip copies of the load phase).
+//   latency-pragma      an HLS LATENCY pragma gives min and max as one name,
+//                       a namespace-scope integer constant (the unit's declared
+//                       pipeline depth), never a number typed again; and it is
+//                       not in a function with HLS INLINE, whose pragmas Vitis
+//                       ignores (UG1399, "Inline")
 //
 // Set-up tables: the tables the host builds in double (reflectance map,
 // classification, rsqrt seeds) live in host-only code, namespace `host` inside
@@ -59,12 +65,17 @@
 // still a finding at the kernel's call.
 //
 // Output: `path:line:col: error: [rule] message`, one per rule and source
-// line, then per top `N functions reachable from TOP, M violations`. Exit 0
+// line, then per top `N functions reachable from TOP, M violations`. With
+// --latencies, first one line per checked reachable function with an HLS
+// LATENCY pragma of that form: `latency: FUNCTION NAME VALUE` (the function's
+// qualified name, the constant's name and its value as the compiler evaluates
+// it), sorted. Exit 0
 // when clean, 1 on violations, 2 when the translation unit does not parse, a
 // top is missing or the arguments are wrong: never a silent pass.
 #include <clang-c/Index.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -73,6 +84,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -263,6 +275,7 @@ struct Options {
   std::vector<std::string> regions;  // sample-loop-ports: the region functions' names
   std::set<std::string> ports;       // ... and the top's pointer parameters they may take
   bool verbose = false;
+  bool latencies = false;  // list the LATENCY pragmas' functions and constants
 };
 
 bool under(const std::string& file, const std::string& dir_or_file) {
@@ -298,6 +311,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
       if (a == "--exempt") o.exempts.push_back(canon(*v));
     } else if (a == "--verbose") {
       o.verbose = true;
+    } else if (a == "--latencies") {
+      o.latencies = true;
     } else {
       std::fprintf(stderr, "voxcast_synth_lint: unknown option %s\n", argv[i]);
       return std::nullopt;
@@ -312,7 +327,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: voxcast_synth_lint --top NAME [--top NAME...] --root DIR [--root DIR...]\n"
                  "                          [--exempt PATH...] [--region NAME --port NAME...]\n"
-                 "                          [--verbose] -- COMPILER_ARGS... FILE\n");
+                 "                          [--verbose] [--latencies] -- COMPILER_ARGS... FILE\n");
     return std::nullopt;
   }
   return o;
@@ -327,6 +342,12 @@ struct Pragma {
   std::vector<std::string> words;  // the tokens between the macro's parentheses
   bool is(std::string_view directive) const {
     return words.size() >= 2 && words[0] == "HLS" && words[1] == directive;
+  }
+  // The VALUE of `key = VALUE`, if any.
+  std::optional<std::string> arg(std::string_view key) const {
+    for (std::size_t i = 0; i + 2 < words.size(); ++i)
+      if (words[i] == key && words[i + 1] == "=") return words[i + 2];
+    return std::nullopt;
   }
   // The NAME of `port = NAME`, if any.
   std::optional<std::string> port() const {
@@ -474,7 +495,8 @@ bool has_body(CXCursor fn) { return clang_isCursorDefinition(fn) != 0; }
 
 class Linter {
  public:
-  Linter(CXTranslationUnit tu, const Options& opts) : tu_(tu), opts_(opts), pragmas_(collect_pragmas(tu)) {}
+  Linter(CXTranslationUnit tu, const Options& opts)
+      : tu_(tu), opts_(opts), pragmas_(collect_pragmas(tu)), constants_(collect_constants(tu)) {}
 
   // Checks one top; returns the number of functions reachable from it.
   std::size_t check_top(CXCursor top) {
@@ -494,6 +516,12 @@ class Linter {
   std::size_t last_violations() const { return last_violations_; }
 
   const Report& report() const { return report_; }
+
+  // `latency: FUNCTION NAME VALUE` for each LATENCY pragma of the checked form.
+  void print_latencies() const {
+    for (const auto& [fn, name, value] : latencies_)
+      std::printf("latency: %s %s %lld\n", fn.c_str(), name.c_str(), value);
+  }
 
  private:
   // --- scope ---------------------------------------------------------------
@@ -537,6 +565,7 @@ class Linter {
     if (!has_body(fn)) return;
     const bool check = checked(fn);
     if (check) check_signature(fn);
+    if (check) check_latency(fn);
     std::vector<CXCursor> stack{fn};
     std::vector<Call> calls;
     visit_body(fn, stack, calls, check);
@@ -971,6 +1000,90 @@ class Linter {
                   "return");
   }
 
+  // --- latency pragmas -------------------------------------------------------
+  // A namespace-scope integer constant: qualified name and value.
+  struct Constant {
+    std::string qualified;
+    long long value;
+  };
+
+  // Every const-qualified namespace-scope variable of the translation unit
+  // with an integer value, by name.
+  static std::multimap<std::string, Constant> collect_constants(CXTranslationUnit tu) {
+    std::multimap<std::string, Constant> out;
+    clang_visitChildren(
+        clang_getTranslationUnitCursor(tu),
+        [](CXCursor c, CXCursor, CXClientData data) {
+          auto* m = static_cast<std::multimap<std::string, Constant>*>(data);
+          if (c.kind == CXCursor_Namespace) return CXChildVisit_Recurse;
+          if (c.kind == CXCursor_VarDecl && clang_isConstQualifiedType(clang_getCursorType(c)))
+            if (const auto v = constant_value(c)) m->insert({spelling(c), {qualified_name(c), *v}});
+          return CXChildVisit_Continue;
+        },
+        &out);
+    return out;
+  }
+
+  // The constant `name` as seen from function `fn`: of the constants of that
+  // name, the one in the innermost namespace enclosing fn.
+  std::optional<Constant> lookup_constant(const std::string& name, CXCursor fn) const {
+    const std::string scope = name_of(fn);
+    std::optional<Constant> best;
+    const auto [lo, hi] = constants_.equal_range(name);
+    for (auto it = lo; it != hi; ++it) {
+      const std::string& q = it->second.qualified;
+      const std::string ns = q.size() > name.size() + 2 ? q.substr(0, q.size() - name.size()) : "";
+      if (!ns.empty() && scope.compare(0, ns.size(), ns) != 0) continue;
+      if (!best || q.size() > best->qualified.size()) best = it->second;
+    }
+    return best;
+  }
+
+  static bool is_identifier(const std::string& w) {
+    return !w.empty() && (std::isalpha(static_cast<unsigned char>(w[0])) || w[0] == '_') &&
+           std::all_of(w.begin(), w.end(), [](char ch) {
+             return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+           });
+  }
+
+  static std::string upper(std::string w) {
+    for (char& ch : w) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    return w;
+  }
+
+  void check_latency(CXCursor fn) {
+    const Span body = span(fn);
+    bool inlined = false;
+    std::vector<const Pragma*> latency;
+    for (const Pragma& p : pragmas_) {
+      if (p.words.size() < 2 || p.words[0] != "HLS" || !body.contains(p.at)) continue;
+      const std::string directive = upper(p.words[1]);
+      if (directive == "INLINE" && (p.words.size() < 3 || upper(p.words[2]) != "OFF"))
+        inlined = true;
+      if (directive == "LATENCY") latency.push_back(&p);
+    }
+    for (const Pragma* p : latency) {
+      if (inlined)
+        report_.add(p->at, "latency-pragma",
+                    "HLS LATENCY in an inlined function (HLS INLINE) is ignored by Vitis" + in(fn));
+      const auto lo = p->arg("min"), hi = p->arg("max");
+      if (!lo || !hi || *lo != *hi || !is_identifier(*lo)) {
+        report_.add(p->at, "latency-pragma",
+                    "HLS LATENCY must give min and max as one name, the unit's declared depth "
+                    "constant" + in(fn));
+        continue;
+      }
+      const auto c = lookup_constant(*lo, fn);
+      if (!c) {
+        report_.add(p->at, "latency-pragma",
+                    "HLS LATENCY names '" + *lo + "', no namespace-scope integer constant" +
+                        in(fn));
+        continue;
+      }
+      if (!inlined) latencies_.insert({name_of(fn), c->qualified, c->value});
+    }
+  }
+
   // --- recursion -------------------------------------------------------------
   // Tarjan's strongly connected components over the reachable graph; every
   // call inside a component (or to itself) closes a cycle.
@@ -1026,6 +1139,8 @@ class Linter {
   CXTranslationUnit tu_;
   const Options& opts_;
   std::vector<Pragma> pragmas_;
+  std::multimap<std::string, Constant> constants_;
+  std::set<std::tuple<std::string, std::string, long long>> latencies_;
   CursorMap<Function> graph_;
   CursorSet classes_seen_;
   CursorSet globals_checked_;
@@ -1109,6 +1224,7 @@ int run(const Options& opts) {
       summaries.push_back(std::to_string(n) + " functions reachable from " + name + ", " +
                           std::to_string(lint.last_violations()) + " violations");
     }
+    if (opts.latencies) lint.print_latencies();
     lint.report().print();
     for (const auto& line : summaries) std::printf("%s\n", line.c_str());
     if (status == 0 && lint.report().size() > 0) status = 1;
