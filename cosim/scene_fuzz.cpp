@@ -20,9 +20,9 @@ namespace voxcast::cosim {
 namespace {
 
 // splitmix64: a fixed stream of 64-bit words per (seed, index).
-class Stream {
+class FuzzStream {
  public:
-  Stream(std::uint64_t seed, int index)
+  FuzzStream(std::uint64_t seed, int index)
       : state_(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(index) + 1) {}
   std::uint64_t next() {
     std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
@@ -42,7 +42,7 @@ class Stream {
 // A transfer function over 8-bit phantom values: a transparent floor, one to
 // three materials, sometimes a feature narrower than a table entry (a spike
 // of width below one value) or a faint material.
-std::vector<ref::TfPoint> random_tf(Stream& s) {
+std::vector<ref::TfPoint> random_tf(FuzzStream& s) {
   std::vector<ref::TfPoint> pts{{0.0, {1.0, 1.0, 1.0}, 0.0}};
   double v = s.range(5.0, 60.0);
   const int materials = 1 + s.pick(3);
@@ -67,7 +67,7 @@ std::vector<ref::TfPoint> random_tf(Stream& s) {
 }
 
 // One width of a preset moved within its documented range (docs/scenes.md).
-void vary_one_width(Stream& s, PrecisionProfile& p) {
+void vary_one_width(FuzzStream& s, PrecisionProfile& p) {
   switch (s.pick(5)) {
     case 0: p.alpha_bits = 6 + s.pick(11); break;       // 6..16
     case 1: p.tf_addr_bits = 6 + s.pick(7); break;      // 6..12
@@ -77,7 +77,7 @@ void vary_one_width(Stream& s, PrecisionProfile& p) {
   }
 }
 
-double percentile(std::vector<double> v, double q) {
+double fuzz_percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size()))) - 1;
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
@@ -87,7 +87,7 @@ double percentile(std::vector<double> v, double q) {
 }  // namespace
 
 ref::Scene random_scene(std::uint64_t seed, int index, int image_size) {
-  Stream s(seed, index);
+  FuzzStream s(seed, index);
   ref::Scene scene = ref::default_scene();
   scene.origin = "scene-fuzz seed " + std::to_string(seed) + " index " + std::to_string(index);
   static const char* const phantoms[] = {"shepp-logan", "shells", "tube", "box"};
@@ -182,7 +182,7 @@ SceneVerdict judge_scene(const ref::Scene& scene, int threads) {
           errors.push_back(std::abs(static_cast<double>(bt.at(x, y)[static_cast<std::size_t>(ch)]) -
                                     truth.at(x, y)[ch] * range));
       }
-    v.error_lsb = percentile(std::move(errors), 0.99);
+    v.error_lsb = fuzz_percentile(std::move(errors), 0.99);
   } catch (const Error& e) {
     v.feasible = false;
     v.refusal = e.what();

@@ -19,11 +19,11 @@
 namespace voxcast::cosim {
 namespace {
 
-double out_max(const PrecisionProfile& p) { return std::ldexp(1.0, p.out_bits) - 1.0; }
+double full_scale(const PrecisionProfile& p) { return std::ldexp(1.0, p.out_bits) - 1.0; }
 // The smallest worst case reported, in output LSB.
-double threshold(const PrecisionProfile& p) { return kHazardFraction * out_max(p); }
+double hazard_threshold(const PrecisionProfile& p) { return kHazardFraction * full_scale(p); }
 
-std::string fmt(double x, int digits = 3) {
+std::string guard_fmt(double x, int digits = 3) {
   std::ostringstream s;
   s << std::setprecision(digits) << x;
   return s.str();
@@ -89,7 +89,7 @@ void alpha_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vect
     const double q = bittrue::u_frac(x, ab);
     // The output's alpha channel carries the opacity itself (the colour
     // channels carry it times the colour, at most 1).
-    const double worst = out_max(p) * slab_opacity_difference(x, q, n);
+    const double worst = full_scale(p) * slab_opacity_difference(x, q, n);
     Hazard h = make_hazard("", "classification.points[" + std::to_string(i) + "].alpha", alpha,
                            "precision.alpha_bits = " + std::to_string(ab), worst);
     std::ostringstream w;
@@ -100,16 +100,16 @@ void alpha_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vect
         << " is below half an LSB of precision.alpha_bits = " << ab << " (" << std::setprecision(3)
         << half_lsb << ")";
     } else {
-      if (worst < threshold(p)) continue;
+      if (worst < hazard_threshold(p)) continue;
       h.kind = "alpha-rounding";
       w << h.key << " " << alpha << " at oversampling "
         << scene.render.oversampling << ": its step opacity " << std::setprecision(3) << x
         << " rounds to " << q << " (" << std::setprecision(2) << (q / x - 1.0) * 100.0
         << " %) in precision.alpha_bits = " << ab;
     }
-    w << "; worst case " << fmt(worst) << " LSB of an output channel";
+    w << "; worst case " << guard_fmt(worst) << " LSB of an output channel";
     h.message = w.str();
-    if (h.kind == "alpha-vanishes" || worst >= threshold(p)) out.push_back(std::move(h));
+    if (h.kind == "alpha-vanishes" || worst >= hazard_threshold(p)) out.push_back(std::move(h));
   }
 }
 
@@ -166,7 +166,7 @@ void table_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vect
     const ref::TfPoint& sp = scene.tf_points[index];
     Hazard h = make_hazard("tf-no-entry", "classification.points[" + std::to_string(index) + "].value",
                            sp.value, "precision.tf_addr_bits = " + std::to_string(p.tf_addr_bits),
-                           out_max(p) * std::min(1.0, sp.alpha));  // the alpha channel: the whole opacity
+                           full_scale(p) * std::min(1.0, sp.alpha));  // the alpha channel: the whole opacity
     std::ostringstream w;
     w << h.key << " " << sp.value << " vanishes: no classification-table entry lies between it and ";
     if (hi <= g.data_hi)
@@ -175,7 +175,7 @@ void table_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vect
       w << "the data's largest value " << volume.to_physical(g.data_hi);
     w << " (precision.tf_addr_bits = " << p.tf_addr_bits << ": entries every " << g.spacing
       << " stored values, the last at " << volume.to_physical(g.last_entry) << "); worst case "
-      << fmt(h.worst_lsb) << " LSB of an output channel";
+      << guard_fmt(h.worst_lsb) << " LSB of an output channel";
     h.message = w.str();
     out.push_back(std::move(h));
   }
@@ -209,7 +209,7 @@ void between_entry_hazards(const ref::Scene& scene, const ref::Volume& volume,
     // channel that, or the colour difference times the opacity.
     const glm::dvec3 dc = glm::abs(want.color - got.color);
     const double tint = std::max({dc.r, dc.g, dc.b}) * std::max(want.alpha, got.alpha);
-    return out_max(p) * std::max(slab_opacity_difference(a, b, n), tint);
+    return full_scale(p) * std::max(slab_opacity_difference(a, b, n), tint);
   };
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const double vp = pts[i].value;
@@ -221,9 +221,9 @@ void between_entry_hazards(const ref::Scene& scene, const ref::Volume& volume,
     ref::Classified chord = at;
     chord.alpha = lo.alpha + f * (hi.alpha - lo.alpha);
     chord.color = lo.color + f * (hi.color - lo.color);
-    if (loss(at, chord) < threshold(p)) continue;  // the ramp's own slope: ordinary
+    if (loss(at, chord) < hazard_threshold(p)) continue;  // the ramp's own slope: ordinary
     const double worst = loss(at, tf.classify(entry_of(g, vp)));
-    if (worst < threshold(p)) continue;
+    if (worst < hazard_threshold(p)) continue;
     const std::size_t index = scene_index(volume, i, pts.size());
     const ref::TfPoint& sp = scene.tf_points[index];
     Hazard h = make_hazard("tf-between-entries",
@@ -236,7 +236,77 @@ void between_entry_hazards(const ref::Scene& scene, const ref::Volume& volume,
       << std::abs(volume.to_physical(g.spacing) - volume.to_physical(0.0))
       << " data units), which see only the chord across it: a feature narrower than an entry "
          "is lost; worst case "
-      << fmt(worst) << " LSB of an output channel";
+      << guard_fmt(worst) << " LSB of an output channel";
+    h.message = w.str();
+    out.push_back(std::move(h));
+  }
+}
+
+// ---- Narrow features at steep data (§3.5, §4) ------------------------------------------
+//
+// The fixed-point sample value differs from the float one by up to
+//   e = 3·D·2^-(wb+1) + 2^-(sf+1+shift)   stored values:
+// each weight fq = Q_RND(f, weight_bits) moves the sample by at most half an
+// LSB of a voxel along its axis, across which the data changes by at most D
+// (the steepest step between neighbouring voxels), and the value is rounded
+// to sample_frac_bits of the field (stored << value_shift). A material whose
+// band of values is narrower than 2e (binary: from its point to the next;
+// ramp: between its neighbouring points) is, at the data's steep edges, hit
+// by a sample in one engine and missed in the other: a ray differs by one
+// sample of the material's step opacity (and colour). A wide band only moves
+// its edges by e, as any sampling does; that is not reported.
+double steepest_step(const ref::Volume& v) {
+  double d = 0.0;
+  for (int z = 0; z < v.dims[2]; ++z)
+    for (int y = 0; y < v.dims[1]; ++y)
+      for (int x = 0; x < v.dims[0]; ++x) {
+        const double c = v.data[v.index(x, y, z)];
+        if (x + 1 < v.dims[0]) d = std::max(d, std::abs(c - v.data[v.index(x + 1, y, z)]));
+        if (y + 1 < v.dims[1]) d = std::max(d, std::abs(c - v.data[v.index(x, y + 1, z)]));
+        if (z + 1 < v.dims[2]) d = std::max(d, std::abs(c - v.data[v.index(x, y, z + 1)]));
+      }
+  return d;
+}
+
+void edge_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vector<Hazard>& out) {
+  const PrecisionProfile& p = scene.precision;
+  const ref::TransferFunction tf = ref::stored_transfer_function(scene, volume);
+  const std::vector<ref::TfPoint>& pts = tf.points();
+  const double step = 1.0 / scene.render.oversampling;
+  const double e = 3.0 * steepest_step(volume) * std::ldexp(1.0, -(p.weight_bits + 1)) +
+                   std::ldexp(1.0, -(p.sample_frac_bits + 1 + bittrue::value_shift(p, volume)));
+  const double data_hi = volume.max_stored();
+  // One sample classified at `a` in one engine and at `b` in the other.
+  auto flip = [&](double a, double b) {
+    const ref::Classified x = tf.classify(a), y = tf.classify(b);
+    const double da = std::abs(ref::opacity_correct(x.alpha, step) - ref::opacity_correct(y.alpha, step));
+    const glm::dvec3 dc = glm::abs(x.color - y.color) * std::max(x.alpha, y.alpha);
+    return full_scale(p) * std::max({da, dc.r, dc.g, dc.b});
+  };
+  const bool binary = scene.tf_interpolation == ref::TfInterpolation::Binary;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double vp = pts[i].value;
+    if (!(pts[i].alpha > 0.0) || vp < 0.0 || vp > data_hi) continue;
+    const double lo = binary ? vp : (i == 0 ? -inf : pts[i - 1].value);
+    const double hi = i + 1 == pts.size() ? inf : pts[i + 1].value;
+    if (!(hi - lo < 2.0 * e)) continue;
+    // The material at its point against the values just outside its band.
+    const double worst = std::max(flip(vp, std::nextafter(lo, -inf)), flip(vp, hi));
+    if (worst < hazard_threshold(p)) continue;
+    const std::size_t index = scene_index(volume, i, pts.size());
+    const ref::TfPoint& sp = scene.tf_points[index];
+    Hazard h = make_hazard("tf-narrow-feature",
+                           "classification.points[" + std::to_string(index) + "].value",
+                           sp.value, "precision.weight_bits = " + std::to_string(p.weight_bits),
+                           worst);
+    std::ostringstream w;
+    w << h.key << " " << sp.value << ": its material's band of values is narrower than twice "
+      << "the fixed-point sample value's error at the data's steepest edges, "
+      << guard_fmt(std::abs(volume.to_physical(e) - volume.to_physical(0.0))) << " data units ("
+      << h.width << ", precision.sample_frac_bits = " << p.sample_frac_bits
+      << "): a sample sees it in one engine and misses it in the other; worst case " << guard_fmt(worst)
+      << " LSB of an output channel per such sample";
     h.message = w.str();
     out.push_back(std::move(h));
   }
@@ -292,9 +362,9 @@ void reflectance_hazards(const ref::Scene& scene, std::vector<Hazard>& out) {
     const double exact = mat.ka + mat.kd * r.diffuse + mat.ks * r.specular;
     const double held = mat.ka + mat.kd * std::min(r.diffuse, cap) + mat.ks * std::min(r.specular, cap);
     for (double c : colours)
-      worst = std::max(worst, out_max(p) * (std::min(1.0, c * exact) - std::min(1.0, c * held)));
+      worst = std::max(worst, full_scale(p) * (std::min(1.0, c * exact) - std::min(1.0, c * held)));
   }
-  if (worst < threshold(p)) return;
+  if (worst < hazard_threshold(p)) return;
   // The key: the light that adds most to the largest diffuse (or specular) term.
   std::size_t brightest = 0;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
@@ -307,10 +377,10 @@ void reflectance_hazards(const ref::Scene& scene, std::vector<Hazard>& out) {
   std::ostringstream w;
   w << h.key << " " << h.value << " (" << scene.lights.size() << " light"
     << (scene.lights.size() == 1 ? "" : "s") << ", intensities summing to " << total
-    << "): the reflectance map reaches diffuse " << fmt(d_max) << ", specular " << fmt(s_max)
+    << "): the reflectance map reaches diffuse " << guard_fmt(d_max) << ", specular " << guard_fmt(s_max)
     << ", but precision.rm_int_bits = " << p.rm_int_bits << " and rm_frac_bits = "
-    << p.rm_frac_bits << " hold at most " << fmt(cap, 6) << ": shading saturates; worst case "
-    << fmt(worst) << " LSB of an output channel";
+    << p.rm_frac_bits << " hold at most " << guard_fmt(cap, 6) << ": shading saturates; worst case "
+    << guard_fmt(worst) << " LSB of an output channel";
   h.message = w.str();
   out.push_back(std::move(h));
 }
@@ -323,6 +393,7 @@ std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume
   alpha_hazards(scene, volume, out);
   table_hazards(scene, volume, out);
   between_entry_hazards(scene, volume, out);
+  edge_hazards(scene, volume, out);
   reflectance_hazards(scene, out);
   return out;
 }
