@@ -26,7 +26,7 @@ TEST_P(ConstantSlab, CentrePixelOpacityIsTheClosedForm) {
 
   const OneRay r = cast_pixel(s, v, 16, 16);
   const double step = 1.0 / oversampling;
-  const double n = r.stats.samples;
+  const double n = static_cast<double>(r.stats.samples);
   EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, n * step), 1e-9);
   // The chord through the voxel-centre box is 31 voxels long; the n samples of
   // `step` cover it to within one step.
@@ -52,7 +52,7 @@ TEST_P(ConstantSlab, ObliquePerspectiveRayMatchesItsChord) {
     const OneRay r = cast_pixel(s, v, 3, py);
     ASSERT_TRUE(r.stats.hit);
     const double step = 1.0 / oversampling;
-    const double n = r.stats.samples;
+    const double n = static_cast<double>(r.stats.samples);
     EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, n * step), 1e-9);
     EXPECT_GE(n * step, r.segment.length());
     EXPECT_LE(n * step, r.segment.length() + step + 1e-12);
