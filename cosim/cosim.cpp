@@ -69,7 +69,7 @@ nlohmann::json accuracy_json(const Accuracy& a) {
 
 CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
                       const TruthSettings& truth_settings, bool strict) {
-  if (scene.algorithm == ref::Algorithm::Heidelberg) return run_cosim_heidelberg(scene, out_dir);
+  if (scene.algorithm == ref::Algorithm::Heidelberg) return run_cosim_heidelberg(scene, out_dir, strict);
   CosimResult r;
   r.truth = truth_settings;
   check_truth_settings(truth_settings, scene);

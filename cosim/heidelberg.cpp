@@ -14,6 +14,7 @@
 #include "cosim/image_io.hpp"
 #include "cosim/metrics.hpp"
 #include "cosim/stopwatch.hpp"
+#include "cosim/warnings.hpp"
 #include "hls/virim/host.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
@@ -159,6 +160,10 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
   s.engine = options.engine;
   const HeidelbergProfile profile = bittrue::heidelberg_profile(scene);
   if (options.engine == Engine::Hls || options.engine == Engine::Rtl) check_hls(profile);
+  if (options.engine != Engine::Ref) {
+    s.hazards = precision_hazards(scene, sv.volume);
+    report_hazards(s.hazards, options.strict, std::cerr);
+  }
   const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
   for (const std::string& out : options.outputs) {
     const std::filesystem::path dir = std::filesystem::path(out).parent_path();
@@ -222,10 +227,13 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
   return s;
 }
 
-CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out_dir) {
+CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out_dir,
+                                 bool strict) {
   CosimResult r;
   std::filesystem::create_directories(out_dir);
   const SceneVolume sv = load_scene_volume(scene);
+  r.hazards = precision_hazards(scene, sv.volume);
+  report_hazards(r.hazards, strict, std::cerr);
   const HeidelbergProfile profile = bittrue::heidelberg_profile(scene);
   r.hls_ran = hls_supports_heidelberg(profile);
   const int threads = scene.render.threads;
@@ -293,6 +301,7 @@ CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out
   nlohmann::json j;
   j["scene"] = scene.origin;
   j["algorithm"] = "heidelberg";
+  j["hazards"] = hazards_json(r.hazards);
   j["bit_exact"] = r.hls_ran ? nlohmann::json(r.bit_exact) : nlohmann::json(nullptr);
   j["engines"] = r.hls_ran ? nlohmann::json{"float", "bittrue", "hls", "rtl"}
                            : nlohmann::json{"float", "bittrue"};

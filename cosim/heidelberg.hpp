@@ -31,7 +31,9 @@ nlohmann::json virim_rtl_json(const ref::Scene& scene, const rtl::virim::VirimRt
 void check_rtl_matches_hls(const ref::QuantImage& rtl_image, const ref::QuantImage& hls_image);
 
 RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions& options);
-CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out_dir);
+// strict: refuse a scene with precision hazards (cosim/warnings.hpp).
+CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out_dir,
+                                 bool strict = false);
 void print_cosim_summary_heidelberg(std::ostream& os, const ref::Scene& scene,
                                     const CosimResult& r);
 

@@ -1,6 +1,7 @@
 #include "cosim/warnings.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <iomanip>
@@ -13,7 +14,9 @@
 #include <nlohmann/json.hpp>
 
 #include "refmodel/bittrue/frame_setup.hpp"
+#include "refmodel/bittrue/heidelberg.hpp"
 #include "refmodel/bittrue/quantize.hpp"
+#include "refmodel/bittrue/shading.hpp"
 #include "refmodel/render/raycaster.hpp"
 
 namespace voxcast::cosim {
@@ -66,15 +69,39 @@ Hazard make_hazard(std::string kind, std::string key, double value, std::string 
   return h;
 }
 
-// ---- Opacity (§4.2): the table holds U(1 - (1 - alpha)^step, alpha_bits) -----------------
+// ---- Opacity (§4.2) and its accumulation (§7.1) -----------------------------------------
 //
-// alpha-vanishes: 0 exactly when the step opacity is below half an LSB (Q_RND
-// rounds a tie up, to one LSB); a slab of the material then loses all of its
-// opacity, up to 1 - (1 - x)^n of the channel.
-// alpha-rounding: the step opacity x rounds to q = Q_RND(x, alpha_bits); over
-// L samples of the material a ray's opacity differs by
-// |(1 - x)^L - (1 - q)^L| (slab_opacity_difference), at most a whole channel
-// when x is a few LSB and L long.
+// A slab of one material, L samples deep: the float reference accumulates
+// F(L) = 1 - (1 - x)^L with x = 1 - (1 - alpha)^step; the table holds
+// q = Q_RND(x, alpha_bits), and the compositor adds w = Q_RND((1 - A)·q,
+// acc_bits) per sample (bittrue::bt_composite, simulated here sample by
+// sample). Over L = 1 .. n (n: the longest ray's samples) the largest
+// |fixed - F| is the worst case one channel can show (the alpha channel
+// carries it whole; a colour channel times the colour).
+//   alpha-vanishes: q = 0 (x below half an LSB; always reported).
+//   alpha-rounding: the table's rounding dominates, max |(1-q)^L - (1-x)^L|.
+//   acc-rounding:   the accumulator's dominates: (1 - A)·q falls below half an
+//                   LSB of acc_bits and A stalls short of 1 - (1-q)^L.
+struct SlabErrors {
+  double table = 0.0, accumulator = 0.0, total = 0.0;
+};
+
+SlabErrors slab_errors(const PrecisionProfile& p, double x, double q, double n) {
+  SlabErrors e;
+  bittrue::BtAccumulator acc;
+  const std::array<double, 3> white{1.0, 1.0, 1.0};
+  const auto samples = static_cast<long>(n);
+  for (long l = 1; l <= samples; ++l) {
+    bittrue::bt_composite(p, acc, white, q);
+    const double f = 1.0 - std::pow(1.0 - x, static_cast<double>(l));
+    const double t = 1.0 - std::pow(1.0 - q, static_cast<double>(l));
+    e.table = std::max(e.table, std::abs(t - f));
+    e.accumulator = std::max(e.accumulator, std::abs(acc.A - t));
+    e.total = std::max(e.total, std::abs(acc.A - f));
+  }
+  return e;
+}
+
 void alpha_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vector<Hazard>& out) {
   const PrecisionProfile& p = scene.precision;
   const int ab = p.alpha_bits;
@@ -87,29 +114,36 @@ void alpha_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vect
     if (!(alpha > 0.0) || alpha >= 1.0) continue;
     const double x = ref::opacity_correct(alpha, step);
     const double q = bittrue::u_frac(x, ab);
-    // The output's alpha channel carries the opacity itself (the colour
-    // channels carry it times the colour, at most 1).
-    const double worst = full_scale(p) * slab_opacity_difference(x, q, n);
+    const SlabErrors e = slab_errors(p, x, q, n);
+    const double worst = full_scale(p) * e.total;
+    if (q != 0.0 && worst < hazard_threshold(p)) continue;
+    const bool accumulator = q != 0.0 && e.accumulator > e.table;
     Hazard h = make_hazard("", "classification.points[" + std::to_string(i) + "].alpha", alpha,
-                           "precision.alpha_bits = " + std::to_string(ab), worst);
+                           accumulator ? "precision.acc_bits = " + std::to_string(p.acc_bits)
+                                       : "precision.alpha_bits = " + std::to_string(ab),
+                           worst);
     std::ostringstream w;
     if (q == 0.0) {
       h.kind = "alpha-vanishes";
-      w << h.key << " " << alpha << " vanishes at oversampling "
-        << scene.render.oversampling << ": its step opacity " << std::setprecision(2) << x
+      w << h.key << " " << alpha << " vanishes at oversampling " << scene.render.oversampling
+        << ": its step opacity " << std::setprecision(2) << x
         << " is below half an LSB of precision.alpha_bits = " << ab << " (" << std::setprecision(3)
         << half_lsb << ")";
-    } else {
-      if (worst < hazard_threshold(p)) continue;
+    } else if (!accumulator) {
       h.kind = "alpha-rounding";
-      w << h.key << " " << alpha << " at oversampling "
-        << scene.render.oversampling << ": its step opacity " << std::setprecision(3) << x
-        << " rounds to " << q << " (" << std::setprecision(2) << (q / x - 1.0) * 100.0
-        << " %) in precision.alpha_bits = " << ab;
+      w << h.key << " " << alpha << " at oversampling " << scene.render.oversampling
+        << ": its step opacity " << std::setprecision(3) << x << " rounds to " << q << " ("
+        << std::setprecision(2) << (q / x - 1.0) * 100.0 << " %) in precision.alpha_bits = " << ab;
+    } else {
+      h.kind = "acc-rounding";
+      w << h.key << " " << alpha << " at oversampling " << scene.render.oversampling
+        << ": its step opacity " << std::setprecision(3) << q << " times the remaining "
+        << "transparency falls below half an LSB of precision.acc_bits = " << p.acc_bits
+        << ", and a ray's opacity stalls short of the float reference's";
     }
     w << "; worst case " << guard_fmt(worst) << " LSB of an output channel";
     h.message = w.str();
-    if (h.kind == "alpha-vanishes" || worst >= hazard_threshold(p)) out.push_back(std::move(h));
+    out.push_back(std::move(h));
   }
 }
 
@@ -385,10 +419,58 @@ void reflectance_hazards(const ref::Scene& scene, std::vector<Hazard>& out) {
   out.push_back(std::move(h));
 }
 
+// ---- The Heidelberg path (docs/heidelberg.md §7.4-7.5) ------------------------------------
+//
+// The density of a voxel is the transfer function's alpha, carried as
+// TRN(rho, density_bits); the slice processor updates T0 -= TRN(T0·rho,
+// light_frac_bits). Each of the n voxels of a line thus loses at most one LSB
+// of each (§7.5: (1-rho)^n <= T0 <= (1-rho)^n + n·2^-lf, and the density's
+// floor adds n·2^-db), and the light a line deposits — which the output
+// shows — is off by at most n·(2^-db + 2^-lf): a bound proved from the
+// widths, reported only where it reaches the threshold (deep view cubes). A
+// density below one LSB of density_bits vanishes: its material absorbs and
+// deposits nothing, up to 1 - (1 - rho)^n of the light.
+void heidelberg_hazards(const ref::Scene& scene, const ref::Volume& volume,
+                        std::vector<Hazard>& out) {
+  const HeidelbergProfile hp = bittrue::heidelberg_profile(scene);
+  const double full = std::ldexp(1.0, hp.out_bits) - 1.0;
+  const double limit = kHazardFraction * full;
+  const int largest = std::max({volume.dims[0], volume.dims[1], volume.dims[2]});
+  const double n = scene.heidelberg.depth > 0 ? scene.heidelberg.depth : largest;
+  const double lsb = std::ldexp(1.0, -hp.density_bits);
+  for (std::size_t i = 0; i < scene.tf_points.size(); ++i) {
+    const double rho = scene.tf_points[i].alpha;
+    if (!(rho > 0.0) || rho >= lsb) continue;
+    const double worst = full * (1.0 - std::pow(1.0 - rho, n));
+    Hazard h = make_hazard("heidelberg-density-vanishes",
+                           "classification.points[" + std::to_string(i) + "].alpha", rho,
+                           "density_bits = " + std::to_string(hp.density_bits), worst);
+    h.message = h.key + " " + guard_fmt(rho) + " is a density below one LSB of the Heidelberg " +
+                "path's " + h.width + " (" + guard_fmt(lsb) +
+                "): its material vanishes from the fixed-point image; worst case " +
+                guard_fmt(worst) + " LSB of the output over " + guard_fmt(n) + " voxels";
+    out.push_back(std::move(h));
+  }
+  const double bound = full * std::min(1.0, n * (lsb + std::ldexp(1.0, -hp.light_frac_bits)));
+  if (bound < limit) return;
+  Hazard h = make_hazard("heidelberg-transmittance", "heidelberg.depth", n,
+                         "density_bits = " + std::to_string(hp.density_bits) +
+                             ", light_frac_bits = " + std::to_string(hp.light_frac_bits),
+                         bound);
+  h.message = "heidelberg.depth " + guard_fmt(n) + ": over that many voxels the floors of the " +
+              "density and of the transmittance update (" + h.width + ") may cost up to " +
+              guard_fmt(bound) + " LSB of the output (n·(2^-db + 2^-lf), docs/heidelberg.md §7.5)";
+  out.push_back(std::move(h));
+}
+
 }  // namespace
 
 std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume& volume) {
   std::vector<Hazard> out;
+  if (scene.algorithm == ref::Algorithm::Heidelberg) {
+    heidelberg_hazards(scene, volume, out);
+    return out;
+  }
   if (scene.render.mode == ref::RenderMode::Mip) return out;
   alpha_hazards(scene, volume, out);
   table_hazards(scene, volume, out);

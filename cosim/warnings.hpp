@@ -37,7 +37,8 @@ inline constexpr double kHazardFraction = 1.0 / 8.0;
 
 struct Hazard {
   // "alpha-vanishes" | "alpha-rounding" | "tf-no-entry" | "tf-between-entries" |
-  // "tf-narrow-feature" | "rm-saturation"
+  // "tf-narrow-feature" | "rm-saturation" | "acc-rounding" | "heidelberg-density-vanishes" |
+  // "heidelberg-transmittance"
   std::string kind;
   std::string key;       // the scene key, e.g. "classification.points[2].alpha", "lights[1].intensity"
   double value = 0.0;    // the key's value

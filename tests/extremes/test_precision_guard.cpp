@@ -174,6 +174,69 @@ TEST(PrecisionGuard, StepOpacityRoundingIsPredicted) {
   }
 }
 
+// The accumulator's rounding: balanced with acc_bits = 6 (an LSB of 1/64).
+// alpha 0.01 at 1x: w = Q_RND((1 - A)·0.01, 6) is one LSB (0.0156, more than
+// the float's 0.01) until (1 - A)·0.01 falls below half an LSB at A ~ 0.22,
+// where the opacity stalls; the float reference goes on to 1 - 0.99^L.
+TEST(PrecisionGuard, AccumulatorStallIsPredicted) {
+  ref::Scene s = with_preset(material_scene(0.01), "balanced");
+  s.precision.acc_bits = 6;
+  s.precision_name = "balanced+acc_bits";
+  s.tf_points[0].color = {1.0, 1.0, 1.0};
+  s.camera.projection = ref::Projection::Parallel;
+  s.camera.pose = {{-5.0, 1.5, 1.5}, {63.0, 1.5, 1.5}, {0.0, 0.0, 1.0}};
+  s.camera.height = 2.0;
+  s.render.width = s.render.height = 2;
+  const ref::Volume v = make_volume(64, 4, 4, 8, [](int, int, int) { return std::uint16_t{100}; });
+  const auto hazards = cosim::precision_hazards(s, v);
+  const cosim::Hazard h = only_hazard(hazards, "acc-rounding");
+  EXPECT_EQ(h.key, "classification.points[0].alpha");
+  EXPECT_EQ(h.width, "precision.acc_bits = 6");
+  // Not a compiled preset: the bit-true engine against the float reference.
+  cosim::SceneVolume sv;
+  sv.volume = v;
+  sv.gradients = ref::compute_gradients(sv.volume, s.volume.gradient);
+  const ref::RenderInputs in = ref::make_render_inputs(s, sv.volume, sv.gradients, s.camera.pose);
+  const ref::Image truth = ref::render_image(in, 2);
+  const ref::QuantImage bt = bittrue::bt_render_image(
+      bittrue::make_frame_setup(s.precision, s, in),
+      bittrue::make_voxel_memory(s.precision, sv.volume, sv.gradients), 2);
+  double error = 0.0;
+  for (int y = 0; y < bt.height; ++y)
+    for (int x = 0; x < bt.width; ++x)
+      for (int c = 0; c < 4; ++c)
+        error = std::max(error, std::abs(static_cast<double>(bt.at(x, y)[static_cast<std::size_t>(c)]) -
+                                         truth.at(x, y)[c] * bt.full_scale()));
+  measured("accumulator stall, acc_bits 6", fmt(error) + " LSB measured, " + fmt(h.worst_lsb) + " predicted");
+  EXPECT_GT(error, 32.0) << "the case is real";
+  EXPECT_LE(error, h.worst_lsb + 1.0);
+}
+
+// The Heidelberg path (VIRIM's widths, docs/heidelberg.md §7.5): a density
+// below one LSB of density_bits vanishes; the transmittance's proved bound
+// n·(2^-db + 2^-lf) reaches the threshold only for very deep view cubes; the
+// shipped VIRIM scenes are clean.
+TEST(PrecisionGuard, HeidelbergDensitiesAndDepth) {
+  for (const char* file : {"heidelberg.toml", "heidelberg-grating.toml"}) {
+    const std::string path = std::string(VOXCAST_SOURCE_DIR) + "/scenes/" + file;
+    const ref::Scene s = ref::load_scene_file(path);
+    const cosim::SceneVolume sv = cosim::load_scene_volume(s);
+    for (const cosim::Hazard& h : cosim::precision_hazards(s, sv.volume))
+      ADD_FAILURE() << file << ": " << h.message;
+    ref::Scene faint = s;
+    faint.tf_points.back().alpha = 1e-5;  // below 2^-16
+    const cosim::Hazard v =
+        only_hazard(cosim::precision_hazards(faint, sv.volume), "heidelberg-density-vanishes");
+    EXPECT_EQ(v.width, "density_bits = 16");
+    ref::Scene deep = s;
+    deep.heidelberg.depth = 4096;  // 4096·2·2^-16 = 1/8 of the output range
+    const cosim::Hazard d =
+        only_hazard(cosim::precision_hazards(deep, sv.volume), "heidelberg-transmittance");
+    EXPECT_EQ(d.key, "heidelberg.depth");
+    EXPECT_DOUBLE_EQ(d.worst_lsb, 255.0 * 4096.0 * 2.0 * std::ldexp(1.0, -16));
+  }
+}
+
 // The shipped scenes with every preset: no hazard (their measured errors are in
 // docs/accuracy.md, all within the ordinary quantization of the widths).
 TEST(PrecisionGuard, ShippedScenesAreClean) {
