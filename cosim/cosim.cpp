@@ -228,14 +228,9 @@ namespace {
 // "none ...", or "N (worst case X LSB): key key ..." (the precision guard, cosim/warnings.hpp).
 std::string hazard_summary(const std::vector<Hazard>& hazards) {
   if (hazards.empty()) return "none predicted by the precision guard";
-  double worst = 0.0;
-  std::string keys;
-  for (const Hazard& h : hazards) {
-    worst = std::max(worst, h.worst_lsb);
-    keys += " " + h.key;
-  }
   std::ostringstream os;
-  os << hazards.size() << " (worst case " << std::setprecision(3) << worst << " LSB):" << keys;
+  os << hazards.size() << " (worst case " << std::setprecision(3) << largest_worst_lsb(hazards)
+     << " LSB): " << hazard_keys(hazards);
   return os.str();
 }
 }  // namespace

@@ -151,10 +151,8 @@ SceneVerdict judge_scene(const ref::Scene& scene, int threads) {
     check_fixed_point(scene, sv, v.hls_ran);
     const std::vector<Hazard> hazards = precision_hazards(scene, sv.volume);
     v.hazards = hazards.size();
-    double worst = 0.0;
-    for (const Hazard& h : hazards) worst = std::max(worst, h.worst_lsb);
     const double range = std::ldexp(1.0, scene.precision.out_bits) - 1.0;
-    v.bound_lsb = kHazardFraction * range + worst;
+    v.bound_lsb = kHazardFraction * range + largest_worst_lsb(hazards);
     const ref::RenderInputs in =
         ref::make_render_inputs(scene, sv.volume, sv.gradients, scene.camera.pose);
     const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);

@@ -55,13 +55,8 @@ std::vector<Cell> measure_accuracy_cells(const PointContext& p) {
 // whose error is hazard-limited says so next to its accuracy.
 std::vector<Cell> measure_hazard_cells(const PointContext& p) {
   const std::vector<Hazard> hazards = precision_hazards(p.scene, p.volume.volume);
-  double worst = 0.0;
-  std::string keys;
-  for (const Hazard& h : hazards) {
-    worst = std::max(worst, h.worst_lsb);
-    keys += (keys.empty() ? "" : " ") + h.key;
-  }
-  return {Cell::num(static_cast<double>(hazards.size())), Cell::num(worst), Cell::txt(keys)};
+  return {Cell::num(static_cast<double>(hazards.size())), Cell::num(largest_worst_lsb(hazards)),
+          Cell::txt(hazard_keys(hazards))};
 }
 
 std::vector<Cell> measure_rtl_cells(const PointContext& p) {

@@ -486,6 +486,18 @@ std::vector<std::string> fixed_point_warnings(const ref::Scene& scene, const ref
   return out;
 }
 
+double largest_worst_lsb(const std::vector<Hazard>& hazards) {
+  double worst = 0.0;
+  for (const Hazard& h : hazards) worst = std::max(worst, h.worst_lsb);
+  return worst;
+}
+
+std::string hazard_keys(const std::vector<Hazard>& hazards) {
+  std::string keys;
+  for (const Hazard& h : hazards) keys += (keys.empty() ? "" : " ") + h.key;
+  return keys;
+}
+
 nlohmann::json hazards_json(const std::vector<Hazard>& hazards) {
   nlohmann::json j = nlohmann::json::array();
   for (const Hazard& h : hazards)

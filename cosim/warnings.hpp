@@ -55,6 +55,12 @@ std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume
 // The hazards' messages (the lines the commands print).
 std::vector<std::string> fixed_point_warnings(const ref::Scene& scene, const ref::Volume& volume);
 
+// The largest predicted worst case among the hazards (0 when there is none),
+// and their keys, space-separated: the summary line, the sweep's columns and
+// the scene fuzzer's bound.
+double largest_worst_lsb(const std::vector<Hazard>& hazards);
+std::string hazard_keys(const std::vector<Hazard>& hazards);
+
 // [{kind, key, value, width, worst_lsb, message}, ...] for report.json and the sweep.
 nlohmann::json hazards_json(const std::vector<Hazard>& hazards);
 

@@ -131,15 +131,6 @@ bool leap_here(const GeometryRegisters<P>&, const Lr&, const Mm&, bool,
   return false;
 }
 
-template <class P, class U>
-bool leaping_enabled(const LeapRegisters<P>& lr, bool mip, Has<true>) {
-  return lr.enabled && !mip;  // a MIP frame takes every sample (march_leaping)
-}
-template <class P, class U, class Lr>
-bool leaping_enabled(const Lr&, bool, Has<false>) {
-  return false;
-}
-
 // One flat loop over the row's samples: an iteration either takes the next
 // ray (and issues its first sample) or issues the current ray's next sample
 // (one bank access) or one leap; a ray's last token ends it. `width` rays in,

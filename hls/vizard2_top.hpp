@@ -223,12 +223,23 @@ bool composite_sample(const FrameState<P, U>&, bool, const Pos&, const Sample<P>
   return true;
 }
 
+// Whether the frame leaps: the leap register is set and the frame is not MIP
+// (a MIP frame takes every sample); never in a design without the unit.
+template <class P, class U>
+bool leaping_enabled(const LeapRegisters<P>& lr, bool mip, Has<true>) {
+  return lr.enabled && !mip;
+}
+template <class P, class U, class Lr>
+bool leaping_enabled(const Lr&, bool, Has<false>) {
+  return false;
+}
+
 // Space leaping (docs/leaping.md) when the frame enables it; false if the ray
 // was not marched here.
 template <class P, class U, class Banks, class PerSample, class Tracer>
 bool march_leaping(const FrameState<P, U>& f, const Banks& banks, const RaySetup<P>& ray,
                    bool mip, PerSample& per_sample, Tracer& tracer, Has<true>) {
-  if (!f.leap.enabled || mip) return false;
+  if (!leaping_enabled<P, U>(f.leap, mip, Has<true>{})) return false;
   auto skip = [&tracer](std::uint64_t run) { tracer.skip(run); };
   march_ray_leaping<P>(f.geometry, f.leap, f.minmax, banks, ray, per_sample, skip);
   return true;

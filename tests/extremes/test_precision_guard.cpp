@@ -32,13 +32,16 @@ cosim::Hazard only_hazard(const std::vector<cosim::Hazard>& hazards, const std::
 }
 
 // The largest |fixed - float| over the image and the channels, in output LSB.
-double worst_error_lsb(const Rendered& r) {
+double worst_error_lsb(const ref::QuantImage& fixed, const ref::Image& truth) {
   double worst = 0.0;
-  for (int y = 0; y < r.bt.height; ++y)
-    for (int x = 0; x < r.bt.width; ++x)
-      for (int c = 0; c < 4; ++c) worst = std::max(worst, error_lsb(r, x, y, c));
+  for (int y = 0; y < fixed.height; ++y)
+    for (int x = 0; x < fixed.width; ++x)
+      for (int c = 0; c < 4; ++c)
+        worst = std::max(worst, std::abs(static_cast<double>(fixed.at(x, y)[static_cast<std::size_t>(c)]) -
+                                         truth.at(x, y)[c] * fixed.full_scale()));
   return worst;
 }
+double worst_error_lsb(const Rendered& r) { return worst_error_lsb(r.bt, r.truth); }
 
 // --strict refuses the scene with an error that names the key.
 void expect_strict_refuses(const std::vector<cosim::Hazard>& hazards, const std::string& key) {
@@ -201,12 +204,7 @@ TEST(PrecisionGuard, AccumulatorStallIsPredicted) {
   const ref::QuantImage bt = bittrue::bt_render_image(
       bittrue::make_frame_setup(s.precision, s, in),
       bittrue::make_voxel_memory(s.precision, sv.volume, sv.gradients), 2);
-  double error = 0.0;
-  for (int y = 0; y < bt.height; ++y)
-    for (int x = 0; x < bt.width; ++x)
-      for (int c = 0; c < 4; ++c)
-        error = std::max(error, std::abs(static_cast<double>(bt.at(x, y)[static_cast<std::size_t>(c)]) -
-                                         truth.at(x, y)[c] * bt.full_scale()));
+  const double error = worst_error_lsb(bt, truth);
   measured("accumulator stall, acc_bits 6", fmt(error) + " LSB measured, " + fmt(h.worst_lsb) + " predicted");
   EXPECT_GT(error, 32.0) << "the case is real";
   EXPECT_LE(error, h.worst_lsb + 1.0);
