@@ -76,16 +76,15 @@ UnitOps geometry_rsqrt(const ProfileFields& f) {
   return u;
 }
 
-UnitOps ray_setup(const ProfileFields& f, bool parallel) {
-  UnitOps u{"ray_setup", parallel ? "§1.3-1.6" : "§1.3, §1.5-1.6", {}, 0, 1};
+UnitOps ray_setup(const ProfileFields& f) {
+  UnitOps u{"ray_setup", "§1.3-1.6", {}, 0, 1};
   auto& o = u.ops;
   const int k = wd::clip_quotient_bits(f);
   o.push_back(mul("s = u·K", 3, wd::unit_bits(f), true, wd::kreg_bits(f), false));
   o.push_back(add("s rounding", 3, wd::step_bits(f)));
-  if (parallel) {
-    o.push_back(mul("px·P, py·R", 6, wd::pixel_bits, false, wd::origin_bits(f), true));
-    o.push_back(add("o = O + px·P + py·R", 6, wd::origin_bits(f) + wd::pixel_bits + 2));
-  }
+  // The pixel's point on the origin plane, for either camera (§0, §1.4).
+  o.push_back(mul("px·P, py·R", 6, wd::pixel_bits, false, wd::origin_bits(f), true));
+  o.push_back(add("o = O + px·P + py·R", 6, wd::origin_bits(f) + wd::pixel_bits + 2));
   o.push_back(add("LO - o, HI - o", 6, wd::clip_num_bits(f)));
   o.push_back(div("k = (LO|HI - o) / s", 6, k, wd::step_bits(f)));
   o.push_back(cmp("k_lo < k_hi, k_near > k_in, k_far < k_out, k_in < 0, k_in > k_out", 3 + 4 + 2,
@@ -371,7 +370,7 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   };
   const int rsqrt = e.perspective ? rtl::pipeline::kRsqrtStages : 0;
   if (e.perspective) put(geometry_rsqrt(f), rsqrt, l.ray_setup_interval);
-  put(ray_setup(f, e.parallel_origin), l.ray_setup - rsqrt, l.ray_setup_interval);
+  put(ray_setup(f), l.ray_setup - rsqrt, l.ray_setup_interval);
   put(stepping(f), hls::stepping_depth);
   put(address_generator(f), l.address - hls::stepping_depth);
   // Beside the address generator: adds its look-up to the requests' latency.

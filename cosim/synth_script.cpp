@@ -76,7 +76,7 @@ std::string synth_cflags(const SynthTop& top, const std::string& source_root,
 
 hls::Units elaborated_units(const ref::Elaboration& e) {
   return hls::Units{.perspective = e.perspective,
-                    .parallel_origin = e.parallel_origin,
+                    .parallel_direction = e.parallel_direction,
                     .gradients = e.gradients,
                     .classification = e.classification,
                     .reflectance_map = e.reflectance_map,
@@ -90,7 +90,7 @@ hls::Units elaborated_units(const ref::Elaboration& e) {
 // One `/* name = */ true,` line per unit of hls::UnitSet, in its parameter order.
 static std::string unit_set_arguments(const hls::Units& u) {
   const std::pair<const char*, bool> flags[] = {
-      {"perspective", u.perspective},       {"parallel_origin", u.parallel_origin},
+      {"perspective", u.perspective},       {"parallel_direction", u.parallel_direction},
       {"gradients", u.gradients},           {"classification", u.classification},
       {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
       {"compositor", u.compositor},         {"ert", u.ert},

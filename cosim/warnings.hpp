@@ -38,7 +38,7 @@ inline constexpr double kHazardFraction = 1.0 / 8.0;
 struct Hazard {
   // "alpha-vanishes" | "alpha-rounding" | "tf-no-entry" | "tf-between-entries" |
   // "tf-narrow-feature" | "rm-saturation" | "acc-rounding" | "heidelberg-density-vanishes" |
-  // "heidelberg-transmittance"
+  // "heidelberg-transmittance" | "geometry-position"
   std::string kind;
   std::string key;       // the scene key, e.g. "classification.points[2].alpha", "lights[1].intensity"
   double value = 0.0;    // the key's value
@@ -47,9 +47,9 @@ struct Hazard {
   std::string message;   // the whole warning, one line
 };
 
-// Every hazard of the scene's profile, in the order: control points (alpha,
-// table entries), then lights. Empty for a MIP scene except what MIP reads
-// (nothing here: MIP has no classification, shading or opacity).
+// Every hazard of the scene's profile, in the order: the camera (the sample
+// positions), control points (alpha, table entries), then lights. A MIP scene
+// has only the camera's (no classification, shading or opacity).
 std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume& volume);
 
 // The hazards' messages (the lines the commands print).

@@ -55,7 +55,6 @@ void visit_unit(GeometryRegisters<P>& g, V& v) {
   bits_array(g.A, v);
   bits_array(g.B, v);
   bits_array(g.C, v);
-  bits_array(g.E, v);
   bits_array(g.O, v);
   bits_array(g.Pcol, v);
   bits_array(g.Rrow, v);

@@ -114,8 +114,7 @@ struct GeometryRegisters {
   bool perspective = true;
   bool jitter = false;                          // render.jitter
   typename G::dir_t A[3], B[3], C[3];           // perspective directions
-  typename G::origin_t E[3];                    // perspective eye, index space
-  typename G::origin_t O[3], Pcol[3], Rrow[3];  // parallel origin and increments
+  typename G::origin_t O[3], Pcol[3], Rrow[3];  // origin plane: origin, increments
   typename G::dir_t U[3];                       // parallel unit direction
   typename G::kreg_t K[3];                      // step / world_scale
   typename G::box_t LO[3], HI[3];               // voxel-centre box (crop)
@@ -259,7 +258,8 @@ void step_vector(const GeometryRegisters<P>& r, const typename GeometryParams<P>
   }
 }
 
-// §1.4, parallel: o = O + px·P + py·R (exact; the host keeps it in range).
+// §1.4: o = O + px·P + py·R (exact; the host keeps it in range), the pixel's
+// point on the origin plane, for either camera.
 template <class P>
 void pixel_origin(const GeometryRegisters<P>& r, typename GeometryParams<P>::pixel_t px,
                   typename GeometryParams<P>::pixel_t py,
@@ -359,10 +359,12 @@ RaySetup<P> ray_setup_perspective(
   typename G::dir_t d[3];
   typename G::unit_t u[3];
   typename G::step_t s[3];
+  typename G::origin_t o[3];
   pixel_direction<P>(r, x, y, d);
   normalize_direction<P>(d, seed, u);
   step_vector<P>(r, u, s);
-  return clip_ray<P>(r, r.E, s, pixel_jitter<P>(r, px, py));
+  pixel_origin<P>(r, x, y, o);  // in parallel with the rsqrt unit: no added depth
+  return clip_ray<P>(r, o, s, pixel_jitter<P>(r, px, py));
 }
 
 // §1, parallel camera: no rsqrt unit (u = U).
@@ -431,7 +433,6 @@ GeometryRegisters<P> load_geometry_registers(const bittrue::FrameRegisters& f) {
     r.A[k] = from_raw_bits<typename G::dir_t>(f.A[i]);
     r.B[k] = from_raw_bits<typename G::dir_t>(f.B[i]);
     r.C[k] = from_raw_bits<typename G::dir_t>(f.C[i]);
-    r.E[k] = from_raw_bits<typename G::origin_t>(f.E[i]);
     r.O[k] = from_raw_bits<typename G::origin_t>(f.O[i]);
     r.Pcol[k] = from_raw_bits<typename G::origin_t>(f.P[i]);
     r.Rrow[k] = from_raw_bits<typename G::origin_t>(f.R[i]);

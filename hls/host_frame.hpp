@@ -50,7 +50,7 @@ inline FrameMode frame_mode(ref::RenderMode m) {
 
 // The unit set type of a Units value (the C++20 side names unit sets by value).
 template <Units V>
-using UnitsType = UnitSet<V.perspective, V.parallel_origin, V.gradients, V.classification,
+using UnitsType = UnitSet<V.perspective, V.parallel_direction, V.gradients, V.classification,
                           V.reflectance_map, V.shader, V.compositor, V.ert, V.mip,
                           V.space_leaping>;
 
@@ -59,7 +59,7 @@ using UnitsType = UnitSet<V.perspective, V.parallel_origin, V.gradients, V.class
 template <class U>
 void check_frame_fits(const bittrue::FrameSetup& fs, const std::string& engine) {
   constexpr Units u = units_of<U>();
-  const bool camera = fs.regs.perspective ? u.perspective : u.parallel_origin;
+  const bool camera = fs.regs.perspective ? u.perspective : u.parallel_direction;
   const ref::RenderMode m = fs.regs.mode;
   const bool mode = m == ref::RenderMode::Mip        ? can_mip(u)
                     : m == ref::RenderMode::Unshaded ? can_composite(u)

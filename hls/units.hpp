@@ -24,7 +24,7 @@ namespace hls {
 
 struct Units {
   bool perspective = true;      // per-pixel direction and the rsqrt unit [§1.1-1.2]
-  bool parallel_origin = true;  // per-pixel origin O + px·P + py·R [§1.4]
+  bool parallel_direction = true;  // parallel camera: one view direction U [§1.1]
   bool gradients = true;        // the gradient fields' consumer (reflectance map) [§3.4-3.5]
   bool classification = true;   // classification table [§4]
   bool reflectance_map = true;  // reflectance map and its registers [§5]
@@ -36,12 +36,12 @@ struct Units {
 };
 
 // The unit set as a type, in the order of Units' fields.
-template <bool Perspective, bool ParallelOrigin, bool Gradients, bool Classification,
+template <bool Perspective, bool ParallelDirection, bool Gradients, bool Classification,
           bool ReflectanceMap, bool Shader, bool Compositor, bool Ert, bool Mip,
           bool SpaceLeaping>
 struct UnitSet {
   static constexpr bool perspective = Perspective;
-  static constexpr bool parallel_origin = ParallelOrigin;
+  static constexpr bool parallel_direction = ParallelDirection;
   static constexpr bool gradients = Gradients;
   static constexpr bool classification = Classification;
   static constexpr bool reflectance_map = ReflectanceMap;
@@ -56,13 +56,13 @@ using AllUnits = UnitSet<true, true, true, true, true, true, true, true, true, t
 
 template <class U>
 constexpr Units units_of() {
-  return Units{U::perspective, U::parallel_origin, U::gradients,  U::classification,
+  return Units{U::perspective, U::parallel_direction, U::gradients,  U::classification,
                U::reflectance_map, U::shader,    U::compositor, U::ert,
                U::mip,          U::space_leaping};
 }
 
 constexpr bool same_units(Units a, Units b) {
-  return a.perspective == b.perspective && a.parallel_origin == b.parallel_origin &&
+  return a.perspective == b.perspective && a.parallel_direction == b.parallel_direction &&
          a.gradients == b.gradients && a.classification == b.classification &&
          a.reflectance_map == b.reflectance_map && a.shader == b.shader &&
          a.compositor == b.compositor && a.ert == b.ert && a.mip == b.mip &&
@@ -79,7 +79,7 @@ constexpr bool can_shade(Units u) { return can_composite(u) && u.reflectance_map
 
 // A design must be able to draw something, and a ray needs a direction.
 constexpr bool consistent(Units u) {
-  return (can_mip(u) || can_composite(u)) && (u.perspective || u.parallel_origin) &&
+  return (can_mip(u) || can_composite(u)) && (u.perspective || u.parallel_direction) &&
          (!u.reflectance_map || u.gradients) && (!u.ert || can_composite(u)) &&
          (!u.space_leaping || can_composite(u));  // leaping skips samples the TF makes empty
 }

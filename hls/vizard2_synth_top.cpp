@@ -75,7 +75,6 @@ void vizard2_frame_top(const Frame* frame, const Word* bank0, const Word* bank1,
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.A type = complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.B type = complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.C type = complete)
-  VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.E type = complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.O type = complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.Pcol type = complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = state.geometry.Rrow type = complete)

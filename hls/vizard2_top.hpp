@@ -81,7 +81,7 @@ RaySetup<P> ray_setup_for(const GeometryRegisters<P>& g, const Rom& rom, int px,
 template <class P, class U>
 RaySetup<P> ray_setup_for(const GeometryRegisters<P>& g,
                           const UnitState<U::perspective, RsqrtRom<P>>& rom, int px, int py) {
-  return ray_setup_for<P>(g, rom, px, py, Cameras<U::perspective, U::parallel_origin>{});
+  return ray_setup_for<P>(g, rom, px, py, Cameras<U::perspective, U::parallel_direction>{});
 }
 
 // The frame's mode as the two flags the datapath uses: the mode register

@@ -27,8 +27,7 @@ struct FrameRegisters {
   int width = 0, height = 0;
   ref::RenderMode mode = ref::RenderMode::Shaded;
   Raw3 A{}, B{}, C{};  // perspective directions, dir_frac_bits
-  Raw3 E{};            // perspective eye, index space, pos_frac_bits
-  Raw3 O{}, P{}, R{};  // parallel origin and increments, index space, pos_frac_bits
+  Raw3 O{}, P{}, R{};  // origin plane: pixel (0,0)'s ray origin, increments, pos_frac_bits
   Raw3 U{};            // parallel unit direction, dir_frac_bits
   Raw3 K{};            // step / world_scale per axis, dir_frac_bits
   Raw3 IS{};           // 1 / world_scale per axis, dir_frac_bits
@@ -38,6 +37,8 @@ struct FrameRegisters {
   bool ert_enabled = true;
   Raw ert_threshold = 0;          // acc_bits
   bool jitter = false;            // render.jitter: start offset (t_frac_bits) per pixel
+  double origin_depth = 0.0;      // the origin plane's depth D from the eye, world units
+                                  // (host only: the guard's and the tests' bound)
 };
 
 // One voxel word (docs/pipeline.md §3.4).
@@ -95,6 +96,10 @@ Raw quantize_rnd(double x, int frac_bits);
 FrameRegisters make_frame_registers(const PrecisionProfile& profile, const ref::Scene& scene,
                                     const ref::RenderInputs& inputs);
 std::vector<Raw> make_rsqrt_seed(const PrecisionProfile& profile);
+// The origin plane's depth D from the eye (world units, >= 0), or -1 when no
+// plane keeps the corner pixels' origins in the origin register's range.
+double origin_plane_depth(const PrecisionProfile& profile, const ref::CameraFrame& camera,
+                          const ref::Vec3& world_scale, const ref::Box& index_box);
 // The volume's voxel words in their banks (value + quantized gradient property, §3.3-3.4).
 VoxelMemory make_voxel_memory(const PrecisionProfile& profile, const ref::Volume& volume,
                               const ref::GradientField& gradients);

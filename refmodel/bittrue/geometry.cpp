@@ -54,7 +54,6 @@ std::array<double, 3> bt_unit_direction(const PrecisionProfile& pr, const FrameR
 std::array<double, 3> bt_ray_origin(const PrecisionProfile& pr, const FrameRegisters& r, int px,
                                     int py) {
   const int pf = pr.pos_frac_bits;
-  if (r.perspective) return vec(r.E, pf);
   const std::array<double, 3> O = vec(r.O, pf), P = vec(r.P, pf), R = vec(r.R, pf);
   std::array<double, 3> o{};
   for (int k = 0; k < 3; ++k) o[k] = O[k] + px * P[k] + py * R[k];  // exact

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <string>
 
 #include "refmodel/bittrue/frame_setup.hpp"
@@ -46,18 +47,67 @@ void check_profile(const PrecisionProfile& p) {
                 " exceeds 49 (docs/pipeline.md §0)");
 }
 
-// The origin format fixed<a+4+pf, a+4>: values in [-2^(a+3), 2^(a+3)).
-void check_origin(const PrecisionProfile& p, const Raw3& o, const char* what) {
+// The origin format fixed<a+4+pf, a+4> holds [-2^(a+3), 2^(a+3)); the plane's
+// corners are kept one voxel inside, so their rounding cannot leave it.
+double origin_limit(const PrecisionProfile& p) { return std::ldexp(1.0, p.addr_bits + 3) - 1.0; }
+
+void check_origin(const PrecisionProfile& p, const Raw3& o) {
   const Raw limit = Raw{1} << (p.addr_bits + 3 + p.pos_frac_bits);
   for (Raw v : o)
     if (v < -limit || v >= limit)
-      throw Error(std::string("camera: the ray origin (") + what +
-                  ") lies outside the geometry processor's origin register range of +-" +
-                  std::to_string(1 << (p.addr_bits + 3)) +
-                  " voxels per axis (docs/pipeline.md §0); move camera.eye closer");
+      throw Error("camera: the ray origin lies outside the geometry processor's origin register "
+                  "range of +-" + std::to_string(1 << (p.addr_bits + 3)) +
+                  " voxels per axis (docs/pipeline.md §0)");
 }
 
 }  // namespace
+
+// The origin plane (docs/pipeline.md §0, "The origin plane"): the rays start
+// on the plane normal to the view direction at depth D from the eye, as close
+// to the volume as it can be without passing into it. A ray's first sample is
+// then o + k_in·s with k_in bounded by the box's depth, not by the eye's
+// distance, so the step vector's rounding (2^-(pf+1) per component, multiplied
+// by k_in) no longer grows with the distance (issue 19).
+//   * D_box = min over the box's corners of forward·(corner - eye): every point
+//     of the box lies at depth >= D_box, so every entry is at k >= 0 from the
+//     plane and k_in's clamp at 0 never moves an entry (it still places the
+//     first sample at the eye when the eye is inside the box: D = 0).
+//   * The plane's corner pixels must fit the origin register: each component of
+//     a corner, (eye + D·dir_c)/ws, is affine in D, so each gives an interval of
+//     D; D is the largest value in [0, D_box] inside all of them.
+double origin_plane_depth(const PrecisionProfile& p, const ref::CameraFrame& cam, const Vec3& ws,
+                          const ref::Box& index_box) {
+  const double u0 = (1.0 / cam.width - 1.0) * cam.half_width;
+  const double v0 = (1.0 - 1.0 / cam.height) * cam.half_height;
+  const double u1 = -u0, v1 = -v0;  // the last column's and row's centres
+  const bool perspective = cam.projection == ref::Projection::Perspective;
+  double d_box = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner{c & 1 ? index_box.hi.x : index_box.lo.x,
+                      c & 2 ? index_box.hi.y : index_box.lo.y,
+                      c & 4 ? index_box.hi.z : index_box.lo.z};
+    d_box = std::min(d_box, glm::dot(cam.forward, corner * ws - cam.eye));
+  }
+  double lo = 0.0, hi = std::max(0.0, d_box);
+  const double limit = origin_limit(p);
+  for (const double u : {u0, u1})
+    for (const double v : {v0, v1}) {
+      // Corner position at depth D: base + D·rate, index space.
+      const Vec3 lateral = u * cam.right + v * cam.up;
+      const Vec3 base = (perspective ? cam.eye : cam.eye + lateral) / ws;
+      const Vec3 rate = (perspective ? cam.forward + lateral : cam.forward) / ws;
+      for (int k = 0; k < 3; ++k) {
+        if (rate[k] == 0.0) {
+          if (std::fabs(base[k]) > limit) return -1.0;
+          continue;
+        }
+        const double a = (-limit - base[k]) / rate[k], b = (limit - base[k]) / rate[k];
+        lo = std::max(lo, std::min(a, b));
+        hi = std::min(hi, std::max(a, b));
+      }
+    }
+  return lo <= hi ? hi : -1.0;
+}
 
 FrameRegisters make_frame_registers(const PrecisionProfile& p,
                                     [[maybe_unused]] const ref::Scene& scene,
@@ -84,14 +134,26 @@ FrameRegisters make_frame_registers(const PrecisionProfile& p,
   const int corners[4][2] = {
       {0, 0}, {cam.width - 1, 0}, {0, cam.height - 1}, {cam.width - 1, cam.height - 1}};
 
+  // The origin plane at depth D (origin_plane_depth): O is the plane's point
+  // on pixel (0,0)'s ray, P and R its increments per column and row; the same
+  // three registers for both projections.
+  const double depth = origin_plane_depth(p, cam, ws, rv.index_box);
+  if (depth < 0.0)
+    throw Error("camera: no plane normal to the view direction between camera.eye and the "
+                "volume keeps the rays' origins inside the geometry processor's origin register "
+                "range of +-" + std::to_string(1 << (p.addr_bits + 3)) +
+                " voxels per axis (docs/pipeline.md §0); narrow camera.fov_deg or camera.height, "
+                "or move camera.eye closer");
+  r.origin_depth = depth;
   if (r.perspective) {
     const Vec3 d00 = cam.forward + u0 * cam.right + v0 * cam.up;
     const double M = glm::length(d00);
     r.A = quantize3(d00 / M, df);
     r.B = quantize3(du * cam.right / M, df);
     r.C = quantize3(dv * cam.up / M, df);
-    r.E = quantize3(cam.eye / ws, pf);
-    check_origin(p, r.E, "camera.eye");
+    r.O = quantize3((cam.eye + depth * d00) / ws, pf);
+    r.P = quantize3(depth * du * cam.right / ws, pf);
+    r.R = quantize3(depth * dv * cam.up / ws, pf);
     // |d| < 2 at every pixel: d·d is convex in (px, py), so the corners bound it.
     for (const auto& c : corners) {
       Raw n2 = 0;
@@ -105,15 +167,15 @@ FrameRegisters make_frame_registers(const PrecisionProfile& p,
                     std::to_string(cam.height) + " image (pixel directions overflow)");
     }
   } else {
-    r.O = quantize3((cam.eye + u0 * cam.right + v0 * cam.up) / ws, pf);
+    r.O = quantize3((cam.eye + u0 * cam.right + v0 * cam.up + depth * cam.forward) / ws, pf);
     r.P = quantize3(du * cam.right / ws, pf);
     r.R = quantize3(dv * cam.up / ws, pf);
     r.U = quantize3(cam.forward, df);
-    for (const auto& c : corners) {
-      Raw3 o{};
-      for (std::size_t k = 0; k < 3; ++k) o[k] = r.O[k] + c[0] * r.P[k] + c[1] * r.R[k];
-      check_origin(p, o, "the view plane through camera.eye");
-    }
+  }
+  for (const auto& c : corners) {
+    Raw3 o{};
+    for (std::size_t k = 0; k < 3; ++k) o[k] = r.O[k] + c[0] * r.P[k] + c[1] * r.R[k];
+    check_origin(p, o);
   }
   r.K = quantize3(in.settings.step / ws, df);
   r.IS = quantize3(1.0 / ws, df);

@@ -34,6 +34,13 @@ Ray primary_ray(const CameraFrame& f, int px, int py) {
   return Ray{f.eye + u * f.right + v * f.up, f.forward};
 }
 
+Ray origin_plane_ray(const CameraFrame& f, int px, int py, double depth) {
+  const Ray ray = primary_ray(f, px, py);
+  // forward·direction > 0 for every pixel: the image plane lies in front of the eye.
+  return Ray{ray.origin + (depth / glm::dot(f.forward, ray.direction)) * ray.direction,
+             ray.direction};
+}
+
 CameraPose rotate_about_up(const CameraPose& pose, double angle_deg) {
   const double a = angle_deg * std::numbers::pi / 180.0;
   const Vec3 k = glm::normalize(pose.up);

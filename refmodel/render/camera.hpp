@@ -30,6 +30,13 @@ CameraFrame make_camera_frame(const CameraDesc& camera, const CameraPose& pose, 
 // normal to the view direction. Both travel only forward (t >= 0).
 Ray primary_ray(const CameraFrame& frame, int px, int py);
 
+// The float twin of the geometry processor's origin plane (docs/pipeline.md §0):
+// pixel (px, py)'s primary ray with its origin moved forward to the plane normal
+// to the view direction at depth `depth` (world units) from the eye; the same
+// line, the same direction. Sampling it from its clip entry gives the same
+// samples as primary_ray when the plane lies in front of the volume.
+Ray origin_plane_ray(const CameraFrame& frame, int px, int py, double depth);
+
 // The pose of one eye of a stereo pair: the eye rotated about the up axis
 // through the centre by `angle_deg` (VIRIM: two images 4 degrees apart, so each
 // eye at +-2).

@@ -76,10 +76,11 @@ Elaboration elaborate(const PrecisionProfile& profile, RenderMode mode, Projecti
     leave_out(e, e.perspective, "ray_direction+rsqrt",
               "camera.projection = parallel: one view direction (register U), no per-pixel "
               "direction or normalisation (docs/pipeline.md §1.2)");
-    e.parallel_origin = true;
+    e.parallel_direction = true;
   } else {
-    e.omitted.push_back({"parallel_origin", "camera.projection = perspective: every ray starts "
-                                            "at the eye (register E, §1.4)"});
+    e.omitted.push_back({"parallel_direction", "camera.projection = perspective: every ray has "
+                                               "its own direction, no view-direction register U "
+                                               "(§1.1)"});
   }
   if (mode == RenderMode::Mip) {
     e.mip = true;

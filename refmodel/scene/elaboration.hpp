@@ -35,7 +35,7 @@ struct Elaboration {
   PrecisionProfile profile;  // the scene's profile, unchanged (the image does not change)
   // Units present (docs/pipeline.md section in brackets).
   bool perspective = true;      // direction per pixel and the rsqrt unit [§1.1-1.2]
-  bool parallel_origin = false; // per-pixel origin O + px·P + py·R [§1.4]
+  bool parallel_direction = false;  // parallel camera: one view direction U [§1.1]
   bool gradients = true;        // gradient fields of the voxel word and their lerps [§3.4-3.5]
   bool classification = true;   // classification table [§4]
   bool reflectance_map = true;  // reflectance map [§5]

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -36,7 +37,8 @@ const std::map<std::string, std::vector<std::string>>& schema() {
       {"volume.crop", {"lo", "hi"}},
       {"classification", {"interpolation", "points", "ka", "kd", "ks", "shininess"}},
       {"classification.points[]", {"value", "color", "alpha"}},
-      {"camera", {"projection", "eye", "center", "up", "fov_deg", "height", "stereo_deg", "path"}},
+      {"camera",
+       {"projection", "eye", "center", "up", "fov_deg", "height", "stereo_deg", "path", "dolly"}},
       {"camera.path[]", {"eye", "center", "up"}},
       {"render", {"width", "height", "mode", "oversampling", "ert_threshold", "background",
                   "frames", "threads", "algorithm", "space_leaping", "leap_block", "jitter"}},
@@ -431,6 +433,16 @@ void read_camera(const TableReader& r, CameraDesc& c) {
   c.stereo_deg = r.number("stereo_deg", c.stereo_deg, 0.0, 30.0);
   c.path.clear();
   for (const TableReader& k : r.tables("path")) c.path.push_back(read_pose(k, c.pose, false));
+  // camera.dolly = f: the eye f times as far from the centre, the field of view
+  // narrowed so the framing at the centre stays (a dolly zoom; a parallel view
+  // keeps its height). Applied here, so the scene holds the moved camera and
+  // writes it back without the key. For sweeps over the eye's distance.
+  const double dolly = r.number("dolly", 1.0, 1e-3, 1e3);
+  if (dolly != 1.0) {
+    c.pose.eye = c.pose.center + dolly * (c.pose.eye - c.pose.center);
+    const double half = std::tan(c.fov_deg * std::numbers::pi / 360.0) / dolly;
+    c.fov_deg = 360.0 / std::numbers::pi * std::atan(half);
+  }
 }
 
 void read_render(const TableReader& r, RenderDesc& d) {

@@ -36,7 +36,7 @@ using voxcast::kBalanced;
 // rsqrt unit, classification, gradients, reflectance map, shader, over
 // operator or ERT comparator.
 constexpr hls::Units kMipParallel{.perspective = false,
-                                  .parallel_origin = true,
+                                  .parallel_direction = true,
                                   .gradients = false,
                                   .classification = false,
                                   .reflectance_map = false,
@@ -48,7 +48,7 @@ constexpr hls::Units kMipParallel{.perspective = false,
 // Perspective, unshaded, ERT off: no parallel origin, gradients, reflectance
 // map, ERT comparator or MIP unit.
 constexpr hls::Units kUnshadedNoErt{.perspective = true,
-                                    .parallel_origin = false,
+                                    .parallel_direction = false,
                                     .gradients = false,
                                     .classification = true,
                                     .reflectance_map = false,
@@ -59,7 +59,7 @@ constexpr hls::Units kUnshadedNoErt{.perspective = true,
                                     .space_leaping = false};
 // Parallel, shaded, ERT on: everything but the perspective units and MIP.
 constexpr hls::Units kShadedParallel{.perspective = false,
-                                     .parallel_origin = true,
+                                     .parallel_direction = true,
                                      .gradients = true,
                                      .classification = true,
                                      .reflectance_map = true,
@@ -110,7 +110,7 @@ std::map<std::string, bool> header_flags(const std::string& text) {
 }
 
 std::map<std::string, bool> flags_of(const hls::Units& u) {
-  return {{"perspective", u.perspective},       {"parallel_origin", u.parallel_origin},
+  return {{"perspective", u.perspective},       {"parallel_direction", u.parallel_direction},
           {"gradients", u.gradients},           {"classification", u.classification},
           {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
           {"compositor", u.compositor},         {"ert", u.ert},

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cosim/engines.hpp"
+#include "refmodel/bittrue/geometry_bound.hpp"
 #include "refmodel/bittrue/quantize.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/error.hpp"
@@ -151,36 +152,19 @@ inline std::uint64_t fixed_sample_count(const Rendered& r, int x, int y) {
 }
 
 // --- Ray origins and directions against the float reference's -----------------------------
-//
-// Perspective (§1.1-1.2): d = A + px B + py C with A, B, C each rounded to df fraction
-// bits, so per component |d - d_exact| <= dd = (1 + px + py) 2^-(df+1); normalising a
-// direction of length |d| (<= 1; 1 at the corners) moves each component by at most
-// (1 + sqrt 3) dd / |d| (the component's own error plus the length's, first order).
-// The rsqrt unit adds <= 3 2^-df: m = Q_RND(n2 4^e, df) costs 2^-df relative, the two
-// rounded products of the last Newton step (y/2)·2^-df <= 2^-df, the final Q_RND(d'y)
-// 2^-(df+1); we allow 4 2^-df, the extra LSB covering the seed's residual after two
-// Newton steps (quadratic: below 2^-df for every preset's seed bits) and second-order
-// terms. Parallel: U = Q_RND(forward, df): 2^-(df+1).
+// The bounds are the library's (refmodel/bittrue/geometry_bound.hpp, where each is
+// derived): the precision guard predicts a scene's worst case from the same ones.
 inline double direction_bound(const PrecisionProfile& p, const ref::CameraFrame& cam, int x,
                               int y) {
-  const int df = p.dir_frac_bits;
-  if (cam.projection == ref::Projection::Parallel) return std::ldexp(1.0, -(df + 1));
-  const double u = (2.0 * (x + 0.5) / cam.width - 1.0) * cam.half_width;
-  const double v = (1.0 - 2.0 * (y + 0.5) / cam.height) * cam.half_height;
-  const double u0 = (1.0 / cam.width - 1.0) * cam.half_width;
-  const double v0 = (1.0 - 1.0 / cam.height) * cam.half_height;
-  const double M = glm::length(cam.forward + u0 * cam.right + v0 * cam.up);
-  const double len = glm::length(cam.forward + u * cam.right + v * cam.up) / M;
-  const double dd = (1.0 + x + y) * std::ldexp(1.0, -(df + 1));
-  return (1.0 + std::sqrt(3.0)) * dd / len + 4.0 * std::ldexp(1.0, -df);
+  return bittrue::direction_error_bound(p, cam, x, y);
+}
+inline double origin_bound(const PrecisionProfile& p, int x, int y) {
+  return bittrue::origin_error_bound(p, x, y);
 }
 
-// Origins (index space, per component): perspective E = Q_RND(eye / world_scale, pf),
-// 2^-(pf+1); parallel O + px P + py R with O, P, R each rounded to pf bits:
-// (1 + px + py) 2^-(pf+1).
-inline double origin_bound(const PrecisionProfile& p, const ref::CameraFrame& cam, int x, int y) {
-  const double half = std::ldexp(1.0, -(p.pos_frac_bits + 1));
-  return cam.projection == ref::Projection::Parallel ? (1.0 + x + y) * half : half;
+// Pixel (x, y)'s float ray from the frame's origin plane.
+inline ref::Ray plane_ray(const Rendered& r, int x, int y) {
+  return ref::origin_plane_ray(r.in.camera, x, y, r.setup.regs.origin_depth);
 }
 
 // The sample counts a fixed-point ray may take. Its line stays within
@@ -201,7 +185,7 @@ inline CountRange count_range(const Rendered& r, int x, int y) {
   const ref::CameraFrame& cam = r.in.camera;
   const ref::Vec3 ws = r.in.volume.world_scale;
   const double ws_max = std::max({ws.x, ws.y, ws.z});
-  const ref::Ray ray = ref::primary_ray(cam, x, y);
+  const ref::Ray ray = plane_ray(r, x, y);
   const ref::Box& box = r.in.volume.world_box;
   double t_far = 0.0;
   for (int c = 0; c < 8; ++c) {
@@ -211,7 +195,7 @@ inline CountRange count_range(const Rendered& r, int x, int y) {
   }
   t_far += 1.0;
   const double du = direction_bound(p, cam, x, y);
-  const double delta = origin_bound(p, cam, x, y) * ws_max + t_far * du;
+  const double delta = origin_bound(p, x, y) * ws_max + t_far * du;
   const double step = r.in.settings.step;
   const auto count = [&](const ref::Vec3& lo, const ref::Vec3& hi) -> double {
     if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) return 0.0;
@@ -325,7 +309,7 @@ inline RayCheck expect_rays_within_bound(const Rendered& r, const std::string& w
   const int df = r.scene.precision.dir_frac_bits;
   for (int y = 0; y < r.bt.height; ++y)
     for (int x = 0; x < r.bt.width; ++x) {
-      const ref::Ray ray = ref::primary_ray(r.in.camera, x, y);
+      const ref::Ray ray = plane_ray(r, x, y);
       std::array<double, 3> u{};
       if (r.setup.regs.perspective) {
         u = bittrue::bt_unit_direction(r.setup.profile, r.setup.regs, r.setup.rsqrt_seed, x, y);
@@ -334,7 +318,7 @@ inline RayCheck expect_rays_within_bound(const Rendered& r, const std::string& w
           u[k] = std::ldexp(static_cast<double>(r.setup.regs.U[k]), -df);
       }
       const std::array<double, 3> o = bittrue::bt_ray_origin(r.setup.profile, r.setup.regs, x, y);
-      const double ob = origin_bound(r.scene.precision, r.in.camera, x, y);
+      const double ob = origin_bound(r.scene.precision, x, y);
       for (int k = 0; k < 3; ++k) {
         const double e =
             std::abs(o[static_cast<std::size_t>(k)] - ray.origin[k] / r.in.volume.world_scale[k]);

@@ -311,18 +311,20 @@ TEST(Extremes, ParallelZoomTiny) {
 }
 
 TEST(Extremes, ParallelZoomHuge) {
-  // View height 1e5 voxels: the view plane's corner origins lie ~5e4 voxels out, beyond
-  // the origin register's +-2^(addr_bits+3) (§0): the host refuses the frame. A 1x1
-  // image's only origin is the eye itself: it renders.
+  // View height 1e5 voxels: the view plane's corner origins lie ~5e4 voxels out on
+  // any plane normal to the view, beyond the origin register's +-2^(addr_bits+3)
+  // (§0): the host refuses the frame. A 1x1 image's only origin is the centre ray's
+  // point on the plane: it renders.
   const ref::Volume v = constant_volume(16, 100);
   for (const std::string& name : preset_names()) {
     const ref::Scene s = with_preset(
         parallel_scene({{7.5, -5.0, 7.5}, {7.5, 7.5, 7.5}, {0.0, 0.0, 1.0}}, 1e5, 16, 16), name);
     const std::string limit = std::to_string(1 << (s.precision.addr_bits + 3));
     EXPECT_EQ(error_of([&] { run_engines(s, v); }),
-              "camera: the ray origin (the view plane through camera.eye) lies outside the "
-              "geometry processor's origin register range of +-" +
-                  limit + " voxels per axis (docs/pipeline.md §0); move camera.eye closer")
+              "camera: no plane normal to the view direction between camera.eye and the volume "
+              "keeps the rays' origins inside the geometry processor's origin register range of "
+              "+-" + limit + " voxels per axis (docs/pipeline.md §0); narrow camera.fov_deg or "
+              "camera.height, or move camera.eye closer")
         << name;
   }
   check_presets(parallel_scene({{7.5, -5.0, 7.5}, {7.5, 7.5, 7.5}, {0.0, 0.0, 1.0}}, 1e5, 1, 1), v,

@@ -236,17 +236,55 @@ TEST(PrecisionGuard, HeidelbergDensitiesAndDepth) {
 }
 
 // The shipped scenes with every preset: no hazard (their measured errors are in
-// docs/accuracy.md, all within the ordinary quantization of the widths).
+// docs/accuracy.md, all within the ordinary quantization of the widths), but
+// one: colin27 at vizard2's widths is geometry-limited. Its 256x256 image and a
+// lever of ~200 samples at 1x put a sample up to 0.13 voxel per axis from the
+// float's (dir_frac_bits = 20: the direction registers' rounding times 255
+// pixels), predicted 50 LSB at its steepest edges; measured, the image's worst
+// pixel falls from 79 to 60 LSB with dir_frac_bits = 24 and pos_frac_bits = 20
+// (docs/extremes.md, "The precision guard").
 TEST(PrecisionGuard, ShippedScenesAreClean) {
   for (const char* file : {"default.toml", "endoscopy.toml", "mip.toml", "colin27.toml"}) {
     const std::string path = std::string(VOXCAST_SOURCE_DIR) + "/scenes/" + file;
     const cosim::SceneVolume sv = cosim::load_scene_volume(ref::load_scene_file(path));
     for (const std::string& preset : preset_names()) {
       const ref::Scene s = ref::load_scene_file(path, {"precision.profile=\"" + preset + "\""});
+      const bool geometry_limited = std::string(file) == "colin27.toml" && preset == "vizard2";
       for (const cosim::Hazard& h : cosim::precision_hazards(s, sv.volume))
-        ADD_FAILURE() << file << ", " << preset << ": " << h.message;
+        if (!(geometry_limited && h.kind == "geometry-position"))
+          ADD_FAILURE() << file << ", " << preset << ": " << h.message;
     }
   }
+}
+
+// The guard knows the camera (issue 19): the predicted position error does not
+// grow with the eye's distance (camera.dolly 1 to 20, the framing kept), it grows
+// with the image (the registers' rounding times the pixel index): the shipped
+// phantom scene at vizard2 is clean at 256x256 and geometry-limited at
+// 2048x2048, at any distance.
+TEST(PrecisionGuard, GeometryHazardFollowsTheImageNotTheEyeDistance) {
+  const std::string path = std::string(VOXCAST_SOURCE_DIR) + "/scenes/default.toml";
+  const cosim::SceneVolume sv = cosim::load_scene_volume(ref::load_scene_file(path));
+  auto geometry = [&](double dolly, int size) {
+    const ref::Scene s = ref::load_scene_file(
+        path, {"precision.profile=\"vizard2\"", "camera.dolly=" + std::to_string(dolly),
+               "render.width=" + std::to_string(size), "render.height=" + std::to_string(size)});
+    double worst = 0.0;
+    for (const cosim::Hazard& h : cosim::precision_hazards(s, sv.volume))
+      if (h.kind == "geometry-position") {
+        EXPECT_EQ(h.key, "camera.eye");
+        worst = h.worst_lsb;
+      }
+    return worst;
+  };
+  for (const double dolly : {1.0, 20.0}) {
+    EXPECT_EQ(geometry(dolly, 256), 0.0) << "dolly " << dolly;
+    EXPECT_GT(geometry(dolly, 2048), 32.0) << "dolly " << dolly;
+  }
+  EXPECT_LE(geometry(20.0, 2048), geometry(1.0, 2048));
+  measured("geometry hazard, default scene, vizard2, 2048x2048",
+           "dolly 1: " + fmt(geometry(1.0, 2048)) + " LSB, dolly 20: " + fmt(geometry(20.0, 2048)) +
+               " LSB");
 }
 
 // The command line: a warning naming the key by default, exit status 6 and

@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <numbers>
 #include <memory>
 #include <optional>
 #include <string>
@@ -332,7 +333,9 @@ TEST(GeometryProcessor, BitExactOffPresetProfile) { check_all_cases_bit_exact<kN
 //    Q_RND(forward, df): eps_u = sqrt(3)·2^-(df+1).
 // 3. Step: s_f = dir_f·step/ws. K is within 2^-(df+1) of step/ws, so
 //    |s_a - s_f,a| <= ds_a = eps_u·step/ws_a + (1 + eps_u)·2^-(df+1) + 2^-(pf+1).
-// 4. Origin: |o_a - o_f,a| <= do = 2^-(pf+1) (E), (1 + px + py)·2^-(pf+1) (parallel).
+// 4. Origin on the origin plane (§0): |o_a - o_f,a| <= do = (1 + px + py)·2^-(pf+1),
+//    O, P and R each rounded to pf bits, o_f the float ray's point on the plane
+//    (ref::origin_plane_ray).
 // 5. Clip: per axis with s_a != 0, k_a = TRUNC0(Q_TRN(F - o_a, tf)/s_a, tf) is
 //    within 2^-tf + [tf < pf]·2^-tf/|s_a| of (F - o_a)/s_a, which is within
 //    do/|s_a| + |F - o_f,a|·ds_a/(|s_a||s_f,a|) of the float k_f,a = (F - o_f,a)/s_f,a.
@@ -395,7 +398,8 @@ void check_against_float(const Case& c, Measured& m) {
       SCOPED_TRACE(::testing::Message() << "pixel (" << px << ", " << py << ")");
       ++m.rays;
       const hls::RaySetup<ProfileTraits<P>> h = hls::ray_setup<ProfileTraits<P>>(regs, rom->seed, px, py);
-      const ref::Ray ray = ref::primary_ray(cam, px, py);
+      // The float twin of the origin plane: the same line from the plane's point.
+      const ref::Ray ray = ref::origin_plane_ray(cam, px, py, bt.regs.origin_depth);
       const std::optional<ref::Segment> seg = ref::clip(ray, rv.world_box);
 
       // 1-2: the unit direction.
@@ -415,7 +419,7 @@ void check_against_float(const Case& c, Measured& m) {
         EXPECT_LE(glm::length(uv - ray.direction), eps_u);
       }
       // 3-4: step and origin.
-      const double d_o = perspective ? half_pf : (1.0 + px + py) * half_pf;
+      const double d_o = (1.0 + px + py) * half_pf;
       const Vec3 o_f = ray.origin / rv.world_scale;
       const Vec3 s_f = ray.direction * step / rv.world_scale;
       std::array<double, 3> ds{}, s{}, o{};
@@ -638,7 +642,9 @@ TEST(GeometrySetup, RegistersOfAnAxisAlignedParallelCamera) {
   const bittrue::FrameRegisters r = bittrue::make_frame_registers(kVizard2, no_scene(), f->in);
   const int pf = kVizard2.pos_frac_bits, df = kVizard2.dir_frac_bits;
   EXPECT_FALSE(r.perspective);
-  EXPECT_EQ(r.O, (bittrue::Raw3{0, -(10 << pf), 4 << pf}));
+  // The origin plane lies at the box's near face y = 0 (depth 10 from the eye, §0).
+  EXPECT_EQ(r.origin_depth, 10.0);
+  EXPECT_EQ(r.O, (bittrue::Raw3{0, 0, 4 << pf}));
   EXPECT_EQ(r.P, (bittrue::Raw3{1 << pf, 0, 0}));
   EXPECT_EQ(r.R, (bittrue::Raw3{0, 0, -(1 << pf)}));
   EXPECT_EQ(r.U, (bittrue::Raw3{0, 1 << df, 0}));
@@ -653,13 +659,36 @@ TEST(GeometrySetup, RegistersOfAnAxisAlignedParallelCamera) {
   EXPECT_EQ(b.s, (std::array<double, 3>{0.0, 0.5, 0.0}));
 }
 
-TEST(GeometrySetup, RejectsAnEyeBeyondTheOriginRegister) {
+TEST(GeometrySetup, AFarEyeMovesTheOriginPlaneToTheVolume) {
+  // vizard2 holds origins within +-2^12 voxels; the eye 5000 voxels out is not
+  // loaded at all: the rays start on the plane through the box's nearest corner.
   Case c;
-  c.eye = {8.0, -5000.0, 8.0};  // vizard2: origins within +-2^12
+  c.eye = {8.0, -5000.0, 8.0};
   c.center = {8.0, 8.0, 8.0};
   const auto f = make_frame(c);
+  const bittrue::FrameRegisters r = bittrue::make_frame_registers(kVizard2, no_scene(), f->in);
+  EXPECT_EQ(r.origin_depth, 5000.0);  // box y in [0, 16]: the near face y = 0
+  EXPECT_EQ(r.O[1], 0) << "pixel (0, 0)'s origin lies on the plane y = 0";
+  EXPECT_NE(r.P[0], 0) << "the perspective origin moves with the pixel";
+  EXPECT_EQ(r.P[1], 0) << "the plane is y = 0 for every pixel";
+}
+
+TEST(GeometrySetup, RejectsACameraWhoseOriginPlaneLeavesTheOriginRegister) {
+  // A 179-degree field of view 5000 voxels out: the corner pixels' rays spread
+  // ~114 voxels sideways per voxel of depth. vizard2's register (+-2^12) holds
+  // neither the eye (a plane at depth < 905) nor the spread of a plane beyond
+  // depth 36: no plane fits and the host refuses the frame. precise (+-2^13)
+  // holds the eye: the plane falls back towards it, to depth 71 (8 + 71·114·31/27
+  // stays below 2^13 - 1), not to the volume at 5000.
+  Case c;
+  c.eye = {8.0, -5000.0, 8.0};
+  c.center = {8.0, 8.0, 8.0};
+  c.fov_deg = 179.0;
+  const auto f = make_frame(c);
   EXPECT_THROW(bittrue::make_frame_registers(kVizard2, no_scene(), f->in), Error);
-  EXPECT_NO_THROW(bittrue::make_frame_registers(kPrecise, no_scene(), f->in));  // 2^13
+  const bittrue::FrameRegisters r = bittrue::make_frame_registers(kPrecise, no_scene(), f->in);
+  const double spread = std::tan(89.5 * std::numbers::pi / 180.0) * 30.0 / 27.0;  // u of column 0
+  EXPECT_NEAR(r.origin_depth, (8191.0 - 8.0) / spread, 1e-6 * r.origin_depth);
 }
 
 TEST(GeometrySetup, RejectsProfilesOutsideTheSpecConstraints) {

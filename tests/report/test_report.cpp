@@ -198,7 +198,7 @@ ref::Elaboration full(const PrecisionProfile& p) {
 // (MIP has no classification or shading stages, so their FIFOs are shorter).
 ref::Elaboration every_unit(const PrecisionProfile& p, bool mip) {
   ref::Elaboration e = full(p);
-  e.parallel_origin = true;
+  e.parallel_direction = true;
   e.mip = mip;
   e.space_leaping = true;
   e.leap_block = 8;

@@ -72,7 +72,7 @@ ref::Elaboration design(bool mip, bool shaded, bool perspective) {
   ref::Elaboration e;
   e.profile = kBalanced;
   e.perspective = perspective;
-  e.parallel_origin = !perspective;
+  e.parallel_direction = !perspective;
   e.mip = mip;
   e.classification = e.compositor = e.ert = !mip;
   e.reflectance_map = e.gradients = !mip && shaded;
