@@ -84,7 +84,8 @@ hls::Units elaborated_units(const ref::Elaboration& e) {
                     .compositor = e.compositor,
                     .ert = e.ert,
                     .mip = e.mip,
-                    .space_leaping = e.space_leaping};
+                    .space_leaping = e.space_leaping,
+                    .partial_segments = e.partial_segments};
 }
 
 // One `/* name = */ true,` line per unit of hls::UnitSet, in its parameter order.
@@ -94,7 +95,8 @@ static std::string unit_set_arguments(const hls::Units& u) {
       {"gradients", u.gradients},           {"classification", u.classification},
       {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
       {"compositor", u.compositor},         {"ert", u.ert},
-      {"mip", u.mip},                       {"space_leaping", u.space_leaping}};
+      {"mip", u.mip},                       {"space_leaping", u.space_leaping},
+      {"partial_segments", u.partial_segments}};
   std::string out;
   for (std::size_t i = 0; i < std::size(flags); ++i)
     out += std::string("    /* ") + flags[i].first + " = */ " + (flags[i].second ? "true" : "false") +
@@ -124,7 +126,8 @@ std::string elaborated_config_header(const ref::Scene& scene, const ref::Elabora
      << "#define VOXCAST_ELABORATED_HAS_PERSPECTIVE " << b01(u.perspective) << "\n"
      << "#define VOXCAST_ELABORATED_HAS_CLASSIFICATION " << b01(u.classification) << "\n"
      << "#define VOXCAST_ELABORATED_HAS_REFLECTANCE_MAP " << b01(u.reflectance_map) << "\n"
-     << "#define VOXCAST_ELABORATED_HAS_SPACE_LEAPING " << b01(u.space_leaping) << "\n\n"
+     << "#define VOXCAST_ELABORATED_HAS_SPACE_LEAPING " << b01(u.space_leaping) << "\n"
+     << "#define VOXCAST_ELABORATED_HAS_PARTIAL_SEGMENTS " << b01(u.partial_segments) << "\n\n"
      << "#include \"hls/units.hpp\"\n#include \"refmodel/precision/profile_traits.hpp\"\n\n"
      << "// C++14, as the design (the vendor front ends' dialect).\n"
      << "namespace voxcast {\nnamespace elaborated {\n\n"

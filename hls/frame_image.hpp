@@ -121,6 +121,13 @@ void visit_unit(MinMaxMemory<P>& m, V& v) {
   }
 }
 
+template <class P, class V>
+void visit_unit(SegmentOpacityTables<P>& t, V& v) {
+  v.flag(t.enabled);
+  bits_array(t.tau, v);
+  bits_array(t.rom, v);
+}
+
 template <class V>
 void visit_unit(AbsentUnit&, V&) {}
 
@@ -140,6 +147,7 @@ void visit_frame(FrameState<P, U>& f, Units present, V& v) {
     visit_unit(f.leap, v);
     visit_unit(f.minmax, v);
   }
+  if (present.partial_segments) visit_unit(f.segments, v);
 }
 
 }  // namespace image

@@ -52,7 +52,7 @@ inline FrameMode frame_mode(ref::RenderMode m) {
 template <Units V>
 using UnitsType = UnitSet<V.perspective, V.parallel_direction, V.gradients, V.classification,
                           V.reflectance_map, V.shader, V.compositor, V.ert, V.mip,
-                          V.space_leaping>;
+                          V.space_leaping, V.partial_segments>;
 
 // Throws voxcast::Error unless a design with units U can render the frame
 // (its camera and render mode; an elaborated top runs only its scene's kind).
@@ -104,6 +104,13 @@ std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs
   } else if (fs.leap) {
     throw Error(engine + ": the design has no space-leaping unit, the frame asks for "
                 "render.space_leaping = true (it was elaborated for another scene)");
+  }
+  if constexpr (U::partial_segments) {
+    if (fs.segments && !load_segment_tables<P>(f->segments, *fs.segments))
+      throw Error(engine + ": segment opacity table size does not match the profile");
+  } else if (fs.segments) {
+    throw Error(engine + ": the design has no segment-opacity unit, the frame asks for "
+                "render.partial_segments = true (it was elaborated for another scene)");
   }
   return f;
 }

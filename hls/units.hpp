@@ -33,12 +33,13 @@ struct Units {
   bool ert = true;              // termination comparator [§7.3]
   bool mip = true;              // maximum register and grey multiply [§7 MIP]
   bool space_leaping = true;    // min-max block memory, prefix table, leap search (docs/leaping.md)
+  bool partial_segments = true;  // segment opacity: optical-depth table, 2^-x ROM [§7a]
 };
 
 // The unit set as a type, in the order of Units' fields.
 template <bool Perspective, bool ParallelDirection, bool Gradients, bool Classification,
           bool ReflectanceMap, bool Shader, bool Compositor, bool Ert, bool Mip,
-          bool SpaceLeaping>
+          bool SpaceLeaping, bool PartialSegments>
 struct UnitSet {
   static constexpr bool perspective = Perspective;
   static constexpr bool parallel_direction = ParallelDirection;
@@ -50,15 +51,16 @@ struct UnitSet {
   static constexpr bool ert = Ert;
   static constexpr bool mip = Mip;
   static constexpr bool space_leaping = SpaceLeaping;
+  static constexpr bool partial_segments = PartialSegments;
 };
 
-using AllUnits = UnitSet<true, true, true, true, true, true, true, true, true, true>;
+using AllUnits = UnitSet<true, true, true, true, true, true, true, true, true, true, true>;
 
 template <class U>
 constexpr Units units_of() {
   return Units{U::perspective, U::parallel_direction, U::gradients,  U::classification,
                U::reflectance_map, U::shader,    U::compositor, U::ert,
-               U::mip,          U::space_leaping};
+               U::mip,          U::space_leaping, U::partial_segments};
 }
 
 constexpr bool same_units(Units a, Units b) {
@@ -66,7 +68,7 @@ constexpr bool same_units(Units a, Units b) {
          a.gradients == b.gradients && a.classification == b.classification &&
          a.reflectance_map == b.reflectance_map && a.shader == b.shader &&
          a.compositor == b.compositor && a.ert == b.ert && a.mip == b.mip &&
-         a.space_leaping == b.space_leaping;
+         a.space_leaping == b.space_leaping && a.partial_segments == b.partial_segments;
 }
 
 // The render modes a design with these units can run (the frame's mode
@@ -81,7 +83,8 @@ constexpr bool can_shade(Units u) { return can_composite(u) && u.reflectance_map
 constexpr bool consistent(Units u) {
   return (can_mip(u) || can_composite(u)) && (u.perspective || u.parallel_direction) &&
          (!u.reflectance_map || u.gradients) && (!u.ert || can_composite(u)) &&
-         (!u.space_leaping || can_composite(u));  // leaping skips samples the TF makes empty
+         (!u.space_leaping || can_composite(u)) &&  // leaping skips samples the TF makes empty
+         (!u.partial_segments || can_composite(u));  // it weights the compositor's opacity
 }
 static_assert(consistent(units_of<AllUnits>()), "the full design must be consistent");
 

@@ -58,15 +58,19 @@ struct TokenFlags {
   bool hit = false;
 };
 
-template <class P>
+// A sample's segment weight (§7a) rides with it from the march stage to the
+// classification stage, where the segment-opacity unit weighs its opacity.
+template <class P, class U>
 struct AccessToken {
   BankAccess<P> access;
+  SampleWeight<P, U> w;
   TokenFlags flags;
 };
 
-template <class P>
+template <class P, class U>
 struct SampleToken {
   Sample<P> s;
+  SampleWeight<P, U> w;
   TokenFlags flags;
 };
 
@@ -134,16 +138,20 @@ bool leap_here(const GeometryRegisters<P>&, const Lr&, const Mm&, bool,
 // One flat loop over the row's samples: an iteration either takes the next
 // ray (and issues its first sample) or issues the current ray's next sample
 // (one bank access) or one leap; a ray's last token ends it. `width` rays in,
-// one end-of-ray token per ray out.
+// one end-of-ray token per ray out. Each sample carries its segment weight
+// (§7a, from the ray's set-up and pixel (x, y)'s jitter).
 template <class P, class U>
 void march_stage(const GeometryRegisters<P>& geometry,
                  const UnitState<U::space_leaping, LeapRegisters<P>>& leap,
-                 const UnitState<U::space_leaping, MinMaxMemory<P>>& minmax, bool mip, int width,
-                 fifo<RaySetup<P>>& rays, fifo<AccessToken<P>>& accesses) {
+                 const UnitState<U::space_leaping, MinMaxMemory<P>>& minmax,
+                 const UnitState<U::partial_segments, SegmentOpacityTables<P>>& segments, bool mip,
+                 int width, int y, fifo<RaySetup<P>>& rays, fifo<AccessToken<P, U>>& accesses) {
   using G = GeometryParams<P>;
   using HasLeap = Has<U::space_leaping>;
+  using HasSegments = Has<U::partial_segments>;
   const bool leaping = leaping_enabled<P, U>(leap, mip, HasLeap{});
   RaySetup<P> ray;
+  RayWeights<P, U> weights;
   typename G::pos_t p[3];
   std::uint64_t k = 0, n = 0;
   bool active = false;
@@ -151,9 +159,10 @@ void march_stage(const GeometryRegisters<P>& geometry,
   [[gnu::unused]] march_loop : while (active || taken < width) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 3637248 avg = 65536)
-    AccessToken<P> t;
+    AccessToken<P, U> t;
     if (!active) {
       ray = rays.read();
+      weights = ray_weights<P>(segments, geometry, ray, taken, y, HasSegments{});
       ++taken;
       n = ray.hit ? ray.n.to_uint64() : 0;
       if (n == 0) {  // missed, or no sample inside: the end token alone
@@ -175,6 +184,7 @@ void march_stage(const GeometryRegisters<P>& geometry,
       k += run;
     } else {
       t.access = address_generator<P>(geometry, p);
+      t.w = weight_of_sample<P>(weights, k, n, HasSegments{});
       t.flags.valid = true;
       ++k;
     }
@@ -217,16 +227,17 @@ void read_bank_ports(const BankPorts<P>& ports, const BankAccess<P>& a, VoxelWor
   word[7] = unpack_voxel_word<P>(ports.bank7[a.addr[7].to_uint64()]);
 }
 
-template <class P>
-void interpolation_stage(const BankPorts<P>& ports, int width, fifo<AccessToken<P>>& accesses,
-                         fifo<SampleToken<P>>& samples) {
+template <class P, class U>
+void interpolation_stage(const BankPorts<P>& ports, int width, fifo<AccessToken<P, U>>& accesses,
+                         fifo<SampleToken<P, U>>& samples) {
   int ended = 0;
   [[gnu::unused]] interpolation_loop : while (ended < width) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 3637248 avg = 65536)
-    const AccessToken<P> t = accesses.read();
-    SampleToken<P> o;
+    const AccessToken<P, U> t = accesses.read();
+    SampleToken<P, U> o;
     o.flags = t.flags;
+    o.w = t.w;
     if (t.flags.valid) {
       VoxelWordFx<P> word[8], corner[8];
       read_bank_ports<P>(ports, t.access, word);
@@ -238,27 +249,32 @@ void interpolation_stage(const BankPorts<P>& ports, int width, fifo<AccessToken<
   }
 }
 
-// ---- 4. Classification (§4) ----------------------------------------------------------------------
-template <class P, class U>
-void classify_token(const ClassificationTable<P>& table, ClassifiedToken<P, U>& o, Has<true>) {
-  if (o.flags.valid) o.e = classify<P>(table, o.s.value);
+// ---- 4. Classification (§4) and segment opacity (§7a) ----------------------------------------------
+template <class P, class U, class Segments>
+void classify_token(const ClassificationTable<P>& table, const Segments& segments,
+                    const SampleWeight<P, U>& w, ClassifiedToken<P, U>& o, Has<true>) {
+  if (o.flags.valid)
+    o.e = weigh_entry<P>(segments, w, o.s.value, classify<P>(table, o.s.value),
+                         Has<U::partial_segments>{});
 }
-template <class P, class U, class Table>
-void classify_token(const Table&, ClassifiedToken<P, U>&, Has<false>) {}
+template <class P, class U, class Table, class Segments>
+void classify_token(const Table&, const Segments&, const SampleWeight<P, U>&,
+                    ClassifiedToken<P, U>&, Has<false>) {}
 
 template <class P, class U>
 void classification_stage(const UnitState<U::classification, ClassificationTable<P>>& table,
-                          int width, fifo<SampleToken<P>>& samples,
+                          const UnitState<U::partial_segments, SegmentOpacityTables<P>>& segments,
+                          int width, fifo<SampleToken<P, U>>& samples,
                           fifo<ClassifiedToken<P, U>>& classified) {
   int ended = 0;
   [[gnu::unused]] classification_loop : while (ended < width) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 3637248 avg = 65536)
-    const SampleToken<P> t = samples.read();
+    const SampleToken<P, U> t = samples.read();
     ClassifiedToken<P, U> o;
     o.s = t.s;
     o.flags = t.flags;
-    classify_token<P, U>(table, o, Has<can_composite(units_of<U>())>{});
+    classify_token<P, U>(table, segments, t.w, o, Has<can_composite(units_of<U>())>{});
     classified.write(o);
     if (t.flags.last) ++ended;
   }
@@ -393,6 +409,12 @@ template <class P>
 void load_unit(const MinMaxMemory<P>& src, MinMaxMemory<P>& dst) {
   load_table(src.block, dst.block);
 }
+template <class P>
+void load_unit(const SegmentOpacityTables<P>& src, SegmentOpacityTables<P>& dst) {
+  dst.enabled = src.enabled;
+  load_table(src.tau, dst.tau);
+  load_table(src.rom, dst.rom);
+}
 inline void load_unit(const AbsentUnit&, AbsentUnit&) {}
 
 // The load phase. `src` is the frame state in external memory, `dst` the
@@ -408,6 +430,7 @@ void load_frame_state(const FrameState<P, U>& src, FrameState<P, U>& dst) {
   load_unit(src.class_table, dst.class_table);
   load_unit(src.reflectance, dst.reflectance);
   load_unit(src.minmax, dst.minmax);
+  load_unit(src.segments, dst.segments);
 }
 
 // ---- The region ----------------------------------------------------------------------------------
@@ -421,8 +444,8 @@ void render_row_streamed(const FrameState<P, U>& f, const BankPorts<P>& ports, i
   const bool mip = frame_is_mip<U>(f.mode);
   const bool shaded = frame_is_shaded<U>(f.mode);
   fifo<RaySetup<P>> rays;
-  fifo<AccessToken<P>> accesses;
-  fifo<SampleToken<P>> interpolated;
+  fifo<AccessToken<P, U>> accesses;
+  fifo<SampleToken<P, U>> interpolated;
   fifo<ClassifiedToken<P, U>> classified;
   fifo<ShadedToken<P, U>> shaded_samples;
   VOXCAST_HLS_PRAGMA(HLS STREAM variable = rays depth = kRayFifoDepth)
@@ -431,9 +454,9 @@ void render_row_streamed(const FrameState<P, U>& f, const BankPorts<P>& ports, i
   VOXCAST_HLS_PRAGMA(HLS STREAM variable = classified depth = kSampleFifoDepth)
   VOXCAST_HLS_PRAGMA(HLS STREAM variable = shaded_samples depth = kSampleFifoDepth)
   ray_setup_stage<P, U>(f.geometry, f.rsqrt, width, y, rays);
-  march_stage<P, U>(f.geometry, f.leap, f.minmax, mip, width, rays, accesses);
-  interpolation_stage<P>(ports, width, accesses, interpolated);
-  classification_stage<P, U>(f.class_table, width, interpolated, classified);
+  march_stage<P, U>(f.geometry, f.leap, f.minmax, f.segments, mip, width, y, rays, accesses);
+  interpolation_stage<P, U>(ports, width, accesses, interpolated);
+  classification_stage<P, U>(f.class_table, f.segments, width, interpolated, classified);
   shading_stage<P, U>(f.reflectance, f.reflectance_regs, shaded, width, classified,
                       shaded_samples);
   compositor_stage<P, U>(f.compositor, mip, width, y, shaded_samples, fb, samples);

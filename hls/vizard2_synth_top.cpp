@@ -109,6 +109,13 @@ void vizard2_frame_top(const Frame* frame, const Word* bank0, const Word* bank1,
   VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.minmax.block type = ram_1p impl = bram)
   VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.leap.prefix type = ram_2p impl = bram)
 #endif
+#if VOXCAST_TOP_HAS_PARTIAL_SEGMENTS
+  // docs/pipeline.md §7a: the optical depth at the classification address
+  // (beside the class table's read) and two adjacent ROM entries per weighted
+  // sample: a single-port block RAM and a dual-port LUT ROM.
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.segments.tau type = ram_1p impl = bram)
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.segments.rom type = ram_2p impl = lutram)
+#endif
   (void)kReflectanceBanks;
 
   voxcast::hls::load_frame_state<TopProfile, TopUnits>(*frame, state);

@@ -6,6 +6,8 @@
 //   geometry processor (ray setup, stepping) -> address generator ->
 //   interpolation processor -> classification table -> reflectance map ->
 //   shader -> compositor (ERT, MIP) -> output quantization
+//   (the segment-opacity unit, §7a, weights the classified opacity of a ray's
+//   first and last samples beside the reflectance map and the shader)
 //
 // A MIP or unshaded frame never reads the reflectance map and a parallel camera
 // never reads the rsqrt ROM, so a design built for such scenes omits them
@@ -22,6 +24,7 @@
 #include "hls/geometry_processor.hpp"
 #include "hls/interpolation_processor.hpp"
 #include "hls/reflectance_map.hpp"
+#include "hls/segment_opacity.hpp"
 #include "hls/shader.hpp"
 #include "hls/space_leaping_unit.hpp"
 #include "hls/pragma.hpp"
@@ -54,6 +57,9 @@ struct FrameState {
   // classification table (the prefix counts).
   UnitState<U::space_leaping, LeapRegisters<P>> leap;
   UnitState<U::space_leaping, MinMaxMemory<P>> minmax;
+  // render.partial_segments (hls/segment_opacity.hpp, §7a): the optical-depth
+  // table, loaded with the classification table, and the 2^-x ROM.
+  UnitState<U::partial_segments, SegmentOpacityTables<P>> segments;
 };
 
 // §1 for the cameras the design has: a one-camera design instantiates only its
@@ -201,12 +207,62 @@ bool composite_step(const CompositorRegisters<P>& regs, const ShadedColor<P>& c,
   return ray_goes_on<P>(acc, regs, Has<U::ert>{});
 }
 
-// §4-7: classification, shading and the over operator for one sample; false
-// once ERT ends the ray.
+// §7a: a ray's segment weights in a design with the segment-opacity unit; an
+// empty stand-in without it.
+template <class P, class U>
+using RayWeights = UnitState<U::partial_segments, SegmentWeights<P>>;
+
+template <class P, class Tables>
+SegmentWeights<P> ray_weights(const Tables& t, const GeometryRegisters<P>& g,
+                              const RaySetup<P>& ray, int px, int py, Has<true>) {
+  return segment_weights<P>(t, ray, pixel_jitter<P>(g, px, py));
+}
+template <class P, class Tables>
+AbsentUnit ray_weights(const Tables&, const GeometryRegisters<P>&, const RaySetup<P>&, int, int,
+                       Has<false>) {
+  return AbsentUnit{};
+}
+
+// §7a: the weight of sample k of a ray of n samples (an empty stand-in
+// without the unit), and the classified entry with its opacity for the
+// sample's segment (the table's entry unchanged without the unit).
+template <class P, class U>
+using SampleWeight =
+    UnitState<U::partial_segments, typename SegmentOpacityParams<P>::weight_t>;
+
+template <class P>
+typename SegmentOpacityParams<P>::weight_t weight_of_sample(const SegmentWeights<P>& w,
+                                                            std::uint64_t k, std::uint64_t n,
+                                                            Has<true>) {
+  return sample_weight<P>(w, k, n);
+}
+template <class P, class W>
+AbsentUnit weight_of_sample(const W&, std::uint64_t, std::uint64_t, Has<false>) {
+  return AbsentUnit{};
+}
+
+template <class P, class Tables>
+ClassEntry<P> weigh_entry(const Tables& t, const typename SegmentOpacityParams<P>::weight_t& w,
+                          const typename ClassificationParams<P>::value_t& value,
+                          ClassEntry<P> e, Has<true>) {
+  e.alpha = segment_opacity<P>(t, class_address<P>(value), e.alpha, w);
+  return e;
+}
+template <class P, class Tables, class W>
+ClassEntry<P> weigh_entry(const Tables&, const W&, const typename ClassificationParams<P>::value_t&,
+                          ClassEntry<P> e, Has<false>) {
+  return e;
+}
+
+// §4-7: classification, shading and the over operator for one sample of
+// segment weight w (§7a); false once ERT ends the ray.
 template <class P, class U, class Pos, class Tracer>
-bool composite_sample(const FrameState<P, U>& f, bool shaded, const Pos& p, const Sample<P>& s,
-                      Accumulator<P>& acc, Tracer& tracer, Has<true>) {
-  const ClassEntry<P> e = classify<P>(f.class_table, s.value);
+bool composite_sample(const FrameState<P, U>& f, bool shaded, const SampleWeight<P, U>& w,
+                      const Pos& p, const Sample<P>& s, Accumulator<P>& acc, Tracer& tracer,
+                      Has<true>) {
+  const ClassEntry<P> e = weigh_entry<P>(f.segments, w, s.value,
+                                         classify<P>(f.class_table, s.value),
+                                         Has<U::partial_segments>{});
   if (e.alpha == 0) {  // transparent: no change, no ERT test (§7)
     tracer.sample(p, s, e, Reflect<P>{0, 0}, ShadedColor<P>{}, acc);
     return true;
@@ -218,8 +274,8 @@ bool composite_sample(const FrameState<P, U>& f, bool shaded, const Pos& p, cons
   return goes_on;
 }
 template <class P, class U, class Pos, class Tracer>
-bool composite_sample(const FrameState<P, U>&, bool, const Pos&, const Sample<P>&,
-                      Accumulator<P>&, Tracer&, Has<false>) {
+bool composite_sample(const FrameState<P, U>&, bool, const SampleWeight<P, U>&, const Pos&,
+                      const Sample<P>&, Accumulator<P>&, Tracer&, Has<false>) {
   return true;
 }
 
@@ -280,10 +336,14 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
   typename CompositorParams<P>::value_t peak = 0;
   using HasMip = Has<can_mip(u)>;
   using HasComposite = Has<can_composite(u)>;
+  const RayWeights<P, U> weights =
+      ray_weights<P>(f.segments, f.geometry, ray, px, py, Has<U::partial_segments>{});
+  const std::uint64_t n = ray.n.to_uint64();
   auto per_sample = [&](std::uint64_t k, const auto& p, const Sample<P>& s) -> bool {
     ++samples;
     if (mip_sample<P>(mip, peak, p, s, tracer, HasMip{})) return true;
-    const bool goes_on = composite_sample<P, U>(f, shaded, p, s, acc, tracer, HasComposite{});
+    const SampleWeight<P, U> w = weight_of_sample<P>(weights, k, n, Has<U::partial_segments>{});
+    const bool goes_on = composite_sample<P, U>(f, shaded, w, p, s, acc, tracer, HasComposite{});
     if (!goes_on) tracer.ert(k);
     return goes_on;
   };

@@ -267,6 +267,57 @@ constexpr int grey_bits(const ProfileFields& p) { return p.acc_bits + grey_int_b
 // §8 the largest output value.
 constexpr unsigned out_max(const ProfileFields& p) { return (1u << p.out_bits) - 1u; }
 
+// ---- Segment opacity (§7a, render.partial_segments) -----------------------------------------
+// ab = alpha_bits, tf = t_frac_bits, g = segment_guard_bits.
+// Guard bits beyond alpha_bits of the unit's intermediate roundings (the optical
+// depth tau2, y = w·tau2, the 2^-x ROM entries and their lerp): each rounding
+// then errs by at most 2^-(ab+g+1), and the unit's error against
+// 1 - (1 - alpha_c)^w stays below 2^-(ab+1) + (3 ln2 + 3)·2^-(ab+g+1), 0.82
+// alpha LSB for g = 3 (docs/pipeline.md §7a.6, tests/hls/test_segment_opacity.cpp).
+constexpr int segment_guard_bits = 3;
+// §7a.1 a sample's segment weight w in [0, 2): tf fraction bits (k_in, k_out and
+// the jitter are on that grid), one integer bit.
+constexpr int segment_weight_int_bits = 1;
+constexpr int segment_weight_bits(const ProfileFields& p) {
+  return p.t_frac_bits + segment_weight_int_bits;
+}
+// §7a.2 tau2 = -log2(1 - alpha_c) in [0, ab] (alpha_c <= 1 - 2^-ab), ab + g fraction bits.
+constexpr int segment_frac_bits(const ProfileFields& p) { return p.alpha_bits + segment_guard_bits; }
+constexpr int segment_tau_int_bits(const ProfileFields& p) { return bits_for(p.alpha_bits); }
+constexpr int segment_tau_bits(const ProfileFields& p) {
+  return segment_tau_int_bits(p) + segment_frac_bits(p);
+}
+// §7a.3 the product w·tau2 (exact) and y = Q_RND(w·tau2, ab + g), both in [0, 2ab).
+constexpr int segment_product_bits(const ProfileFields& p) {
+  return segment_weight_bits(p) + segment_tau_bits(p);
+}
+constexpr int segment_y_int_bits(const ProfileFields& p) { return bits_for(2 * p.alpha_bits); }
+constexpr int segment_y_bits(const ProfileFields& p) {
+  return segment_y_int_bits(p) + segment_frac_bits(p);
+}
+// §7a.4 the ROM of 2^-x at x = i·2^-r, i = 0 .. 2^r (2^r + 1 entries, in [1/2, 1]:
+// one integer bit, ab + g fraction bits). Linear interpolation of 2^-x over a
+// cell of 2^-r errs by at most (ln 2)^2/8 · 4^-r = 2^-(4.06 + 2r), below 2^-(ab+g+1)
+// when 2r >= ab + g - 3: r = ceil((ab + g - 3)/2).
+constexpr int segment_rom_index_bits(const ProfileFields& p) {
+  return (p.alpha_bits + segment_guard_bits - 2) / 2;
+}
+constexpr int segment_rom_entries(const ProfileFields& p) {
+  return (1 << segment_rom_index_bits(p)) + 1;
+}
+constexpr int segment_mant_bits(const ProfileFields& p) { return segment_frac_bits(p) + 1; }
+// The lerp's position inside a cell: the fraction bits of y below the top r.
+constexpr int segment_lerp_frac_bits(const ProfileFields& p) {
+  return segment_frac_bits(p) - segment_rom_index_bits(p);
+}
+// §7a.5 the shift 2^-floor(y) clamped at ab + 2 (beyond it 2^-y < 2^-(ab+2) and
+// U(1 - 2^-y, ab) saturates either way), and m·2^-s exact.
+constexpr int segment_max_shift(const ProfileFields& p) { return p.alpha_bits + 2; }
+constexpr int segment_shift_bits(const ProfileFields& p) { return bits_for(segment_max_shift(p)); }
+constexpr int segment_scaled_bits(const ProfileFields& p) {
+  return segment_mant_bits(p) + segment_max_shift(p);
+}
+
 // ---- Space leaping (docs/leaping.md) --------------------------------------------------------
 // The leap's binary search has leap_bits stages and finds runs of up to 2^leap_bits
 // samples; a longer run is split into several leaps, each exact, so this bounds the

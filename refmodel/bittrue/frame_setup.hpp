@@ -70,6 +70,24 @@ struct LeapTables {
 };
 std::vector<std::uint32_t> nonzero_prefix(const std::vector<ClassEntry>& table);
 
+// render.partial_segments (docs/pipeline.md §7a, hls/segment_opacity.hpp): per
+// classification entry the optical depth tau2 = -log2(1 - alpha_c) and the
+// ROM of 2^-x, both with alpha_bits + segment_guard_bits fraction bits.
+// The unit's widths as docs/pipeline.md §7a states them (the bit-true model's own
+// derivation; the hls kernel's are hls/widths.hpp's segment_* functions).
+inline constexpr int kSegmentGuardBits = 3;  // g
+inline int segment_frac_bits(const PrecisionProfile& p) { return p.alpha_bits + kSegmentGuardBits; }
+inline int segment_rom_index_bits(const PrecisionProfile& p) {  // r = ceil((ab + g - 3)/2)
+  return (p.alpha_bits + kSegmentGuardBits - 2) / 2;
+}
+inline int segment_max_shift(const PrecisionProfile& p) { return p.alpha_bits + 2; }
+struct SegmentTables {
+  std::vector<Raw> tau;  // 2^tf_addr_bits entries (§7a.2)
+  std::vector<Raw> rom;  // 2^r + 1 entries, 2^-(i·2^-r) (§7a.4)
+};
+SegmentTables make_segment_tables(const PrecisionProfile& profile,
+                                  const std::vector<ClassEntry>& class_table);
+
 struct FrameSetup {
   PrecisionProfile profile;
   FrameRegisters regs;
@@ -78,6 +96,7 @@ struct FrameSetup {
   std::vector<std::uint32_t> rm_diffuse;   // rm_entries(profile), rm_int_bits.rm_frac_bits (§5)
   std::vector<std::uint32_t> rm_specular;  // likewise
   std::optional<LeapTables> leap;          // render.space_leaping (never in MIP)
+  std::optional<SegmentTables> segments;   // render.partial_segments (never in MIP)
 };
 
 // Voxel values enter the value field scaled to its full range (docs/pipeline.md

@@ -32,6 +32,8 @@ FrameSetup make_frame_setup(const PrecisionProfile& profile, const ref::Scene& s
     t.nonzero_prefix = nonzero_prefix(fs.class_table);
     fs.leap = std::move(t);
   }
+  if (scene.render.partial_segments && scene.render.mode != ref::RenderMode::Mip)
+    fs.segments = make_segment_tables(profile, fs.class_table);
   return fs;
 }
 
@@ -121,6 +123,7 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
     const bool leap = fs.leap && !mip;
     BtAccumulator acc;
     double peak = 0.0;
+    const BtSegmentWeights weights = bt_segment_weights(fs, ray, px, py);
     std::array<double, 3> pos = ray.p0;
     for (std::uint64_t j = 0; j < ray.n; ++j) {
       if (j > 0) pos = bt_step(pos, ray.s);
@@ -143,7 +146,10 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
       }
       const ClassEntry& e = bt_classify(fs, s.value);
       st.class_address = bt_class_address(p, s.value);
-      st.alpha = bt_alpha(p, e);
+      // §7a: the opacity for the sample's segment (the table's alpha but for the
+      // first and last samples of a ray with render.partial_segments).
+      st.alpha = bt_segment_alpha(fs, st.class_address, bt_alpha(p, e),
+                                  bt_sample_weight(weights, j, ray.n));
       bool stop = false;
       if (st.alpha > 0.0) {
         const BtReflect r = shaded ? bt_reflectance(fs, s.g) : BtReflect{};

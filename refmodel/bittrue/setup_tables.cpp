@@ -39,6 +39,25 @@ std::vector<ClassEntry> make_class_table(const PrecisionProfile& profile,
   return table;
 }
 
+SegmentTables make_segment_tables(const PrecisionProfile& profile,
+                                  const std::vector<ClassEntry>& class_table) {
+  const int ab = profile.alpha_bits;
+  const int F = segment_frac_bits(profile);
+  SegmentTables t;
+  // §7a.2: from the table's rounded alpha, so that w = 1 gives alpha_c back; alpha_c <= 1 - 2^-ab
+  // (U saturates), so tau2 <= ab is finite.
+  t.tau.reserve(class_table.size());
+  for (const ClassEntry& e : class_table)
+    t.tau.push_back(to_raw(q_rnd(-std::log2(1.0 - from_raw(e.alpha, ab)), F), F));
+  // §7a.4: 2^-x at x = i·2^-r, i = 0 .. 2^r.
+  const int r = segment_rom_index_bits(profile);
+  const int n = (1 << r) + 1;
+  t.rom.reserve(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    t.rom.push_back(to_raw(q_rnd(std::exp2(-std::ldexp(static_cast<double>(i), -r)), F), F));
+  return t;
+}
+
 void make_reflectance_maps(const PrecisionProfile& profile, const ref::ShadingSetup& shading,
                            std::vector<std::uint32_t>& diffuse,
                            std::vector<std::uint32_t>& specular) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "refmodel/bittrue/quantize.hpp"
+#include "refmodel/render/jitter.hpp"
 
 namespace voxcast::bittrue {
 
@@ -146,6 +147,52 @@ bool bt_composite(const PrecisionProfile& p, BtAccumulator& acc, const std::arra
 
 bool bt_ert(const FrameSetup& fs, const BtAccumulator& acc) {
   return fs.regs.ert_enabled && acc.A >= from_raw(fs.regs.ert_threshold, fs.profile.acc_bits);
+}
+
+// --- §7a Segment opacity ----------------------------------------------------------------
+
+BtSegmentWeights bt_segment_weights(const FrameSetup& fs, const BtRay& ray, int px, int py) {
+  BtSegmentWeights w;
+  if (!fs.segments || !ray.hit) return w;
+  const int tf = fs.profile.t_frac_bits;
+  const double j =
+      fs.regs.jitter ? std::ldexp(static_cast<double>(ref::jitter_raw(px, py, tf)), -tf) : 0.0;
+  const double d = ray.k_out - ray.k_in;  // exact, tf bits
+  const double frac = d - std::floor(d);
+  if (ray.n == 1) {
+    w.first = frac + j;
+  } else {
+    w.first = 1.0 + j;
+    w.last = frac;
+  }
+  return w;
+}
+
+double bt_sample_weight(const BtSegmentWeights& w, std::uint64_t k, std::uint64_t n) {
+  if (k == 0) return w.first;
+  if (k + 1 == n) return w.last;
+  return 1.0;
+}
+
+double bt_segment_alpha(const FrameSetup& fs, int addr, double alpha_c, double w) {
+  if (w == 1.0) return alpha_c;
+  const PrecisionProfile& p = fs.profile;
+  const int F = segment_frac_bits(p);
+  const int r = segment_rom_index_bits(p);
+  // §7a.3: w·tau2 is exact (at most 45 bits), one rounding.
+  const double y = q_rnd(w * from_raw(fs.segments->tau[static_cast<std::size_t>(addr)], F), F);
+  // §7a.4: the ROM cell of frac(y) and the position in it; the lerp exact, one rounding.
+  const double fl = std::floor(y);
+  const double cell = std::ldexp(y - fl, r);
+  const double i = std::floor(cell);
+  const double u = cell - i;
+  const auto at = static_cast<std::size_t>(i);
+  const double e0 = from_raw(fs.segments->rom[at], F);
+  const double e1 = from_raw(fs.segments->rom[at + 1], F);
+  const double m = q_rnd(e0 - (e0 - e1) * u, F);
+  // §7a.5: 2^-floor(y) clamped at ab + 2 (exact), then U(1 - v, ab).
+  const double v = std::ldexp(m, -static_cast<int>(std::min(fl, double{segment_max_shift(p)})));
+  return u_frac(1.0 - v, p.alpha_bits);
 }
 
 BtAccumulator bt_mip_pixel(const FrameSetup& fs, double M) {

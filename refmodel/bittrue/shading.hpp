@@ -11,6 +11,7 @@
 #include <ostream>
 
 #include "refmodel/bittrue/frame_setup.hpp"
+#include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/precision/profile.hpp"
 
 namespace voxcast::bittrue {
@@ -60,6 +61,21 @@ bool bt_composite(const PrecisionProfile& p, BtAccumulator& acc, const std::arra
                   double alpha_c);
 // A >= Q_RND(threshold, acc_bits), when the frame's ERT register is enabled.
 bool bt_ert(const FrameSetup& fs, const BtAccumulator& acc);
+
+// --- §7a Segment opacity (render.partial_segments) ---------------------------------------
+// The weights of a ray's first and last samples, in steps (every other sample
+// has 1): with d = k_out - k_in and j the pixel's jitter, first = 1 + j (n >= 2)
+// or d + j (n = 1), last = frac(d). All 1 without fs.segments or on a miss.
+struct BtSegmentWeights {
+  double first = 1.0, last = 1.0;
+};
+BtSegmentWeights bt_segment_weights(const FrameSetup& fs, const BtRay& ray, int px, int py);
+// The weight of sample k of a ray of n samples.
+double bt_sample_weight(const BtSegmentWeights& w, std::uint64_t k, std::uint64_t n);
+// alpha_c (the entry at classification address `addr`) for a segment of weight w:
+// alpha_c when w = 1, else U(1 - 2^-y, ab), y = Q_RND(w·tau2[addr], ab + g), 2^-y from
+// the ROM's lerp and a shift (§7a.3-7.5).
+double bt_segment_alpha(const FrameSetup& fs, int addr, double alpha_c, double w);
 
 // MIP: the running maximum (M starts at 0) and the pixel (grey, grey, grey, 1) with
 // grey = SAT(Q_RND(M·RM, acc_bits), 0, 1).

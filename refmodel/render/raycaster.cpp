@@ -169,6 +169,12 @@ std::uint32_t jittered_count(const Segment& s, double step, double jitter) {
 }
 }  // namespace
 
+double segment_weight(std::uint32_t k, std::uint32_t n, double length, double jitter) {
+  if (k == 0) return n == 1 ? length : 1.0 + jitter;
+  if (k + 1 == n) return length - (jitter + static_cast<double>(n - 1));
+  return 1.0;
+}
+
 glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const ShadingSetup& shading,
                     const RenderSettings& settings, const Ray& ray, RayStats* stats,
                     const LeapBlocks* leap, double jitter) {
@@ -197,6 +203,8 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
     return glm::dvec4(gray, gray, gray, 1.0);
   }
 
+  // render.partial_segments: the clipped length in steps, for segment_weight.
+  const double length = seg->length() / settings.step;
   Accumulator acc;
   for (std::uint32_t k = 0; k < n; ++k) {
     const Vec3 p = position(k);
@@ -209,11 +217,18 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
     ++st.samples;
     const Classified c = tf.classify(s.value);
     if (c.alpha <= 0.0) continue;
+    // Opacity correction for the segment the sample stands for: one step, or
+    // with render.partial_segments the first and last segments' lengths.
+    const double alpha = settings.partial_segments
+                             ? opacity_correct(c.alpha, settings.step *
+                                                            segment_weight(k, n, length, jitter))
+                             : opacity_correct(c.alpha, settings.step);
+    if (alpha <= 0.0) continue;  // a segment of length 0: transparent
     const Vec3 color =
         settings.mode == RenderMode::Shaded
             ? shade(c, reflectance(shading, surface_normal(s.gradient, rv.world_scale)))
             : c.color;
-    composite(acc, color, opacity_correct(c.alpha, settings.step));
+    composite(acc, color, alpha);
     if (ert && acc.alpha >= settings.ert_threshold) {
       st.terminated_early = k + 1 < n;
       break;
@@ -236,6 +251,7 @@ RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
   in.settings.step = 1.0 / scene.render.oversampling;
   in.settings.ert_threshold = scene.render.ert_threshold;
   if (scene.render.jitter) in.settings.jitter_bits = scene.precision.t_frac_bits;
+  in.settings.partial_segments = scene.render.partial_segments;
   if (scene.render.space_leaping && scene.render.mode != RenderMode::Mip)
     in.leap = make_leap_blocks(std::make_shared<const MinMaxBlocks>(make_min_max_blocks(
                                    volume, leap_block_log2(scene.render.leap_block))),

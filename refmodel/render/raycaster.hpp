@@ -114,7 +114,19 @@ struct RenderSettings {
   double step = 1.0;            // sampling distance, world units (1/oversampling)
   double ert_threshold = 0.98;  // >= 1 disables early ray termination
   int jitter_bits = 0;          // render.jitter: start offset resolution (0 = off)
+  bool partial_segments = false;  // render.partial_segments: segment_weight()
 };
+
+// render.partial_segments (docs/pipeline.md §7a): the length, in steps, of the
+// segment sample k of n stands for on a ray whose clipped length is `length`
+// steps and whose first sample lies `jitter` steps after the entry. Sample k
+// sits at jitter + k and stands for [max(jitter + k, 0 if k = 0), min(jitter +
+// k + 1, length)]: the first sample also takes the unsampled gap before it
+// (1 + jitter, or the whole length when it is the only one), the last the
+// fraction length - (jitter + n - 1) in [0, 1), every other sample 1. The
+// weights sum to `length`, so a constant medium of opacity a per step gives
+// 1 - (1 - a)^length whatever the length.
+double segment_weight(std::uint32_t k, std::uint32_t n, double length, double jitter);
 
 // Space leaping in the reference (docs/leaping.md): the volume's min-max
 // blocks and, per block, whether the transfer function is transparent over
@@ -130,6 +142,7 @@ LeapBlocks make_leap_blocks(std::shared_ptr<const MinMaxBlocks> blocks,
                             const TransferFunction& tf_stored);
 
 // Samples at t_k = t_enter + k*step for k = 0 .. floor((t_exit - t_enter)/step).
+// With render.partial_segments the first and last weigh by segment_weight().
 std::uint32_t sample_count(const Segment& s, double step);
 
 // `leap`: skip samples in empty blocks (null: no leaping; MIP never leaps).

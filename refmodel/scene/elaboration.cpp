@@ -139,6 +139,16 @@ void elaborate_options(Elaboration& e, const RenderDesc& render, const std::arra
   if (!e.jitter)
     e.omitted.push_back({"jitter", "render.jitter = false: every ray starts at its entry, no "
                                    "pixel hash in the ray set-up (docs/leaping.md)"});
+  if (!render.partial_segments) {
+    e.omitted.push_back({"segment_opacity", "render.partial_segments = false: every sample has "
+                                            "the table's opacity, no optical-depth table or 2^-x "
+                                            "ROM (docs/pipeline.md §7a)"});
+  } else if (render.mode == RenderMode::Mip) {
+    e.omitted.push_back({"segment_opacity", "render.mode = mip: no opacity to weight "
+                                            "(docs/pipeline.md §7a)"});
+  } else {
+    e.partial_segments = true;
+  }
 }
 
 }  // namespace voxcast::ref

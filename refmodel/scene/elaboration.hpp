@@ -56,6 +56,9 @@ struct Elaboration {
   int leap_block = 8;           // cells per block edge
   long long leap_blocks = 0;    // blocks the volume needs (the min-max memory's depth)
   bool jitter = false;          // per-pixel start offset hash in the ray set-up
+  // render.partial_segments (docs/pipeline.md §7a): the segment-opacity unit,
+  // its optical-depth table and its 2^-x ROM; never in MIP (no opacity).
+  bool partial_segments = false;
   std::vector<Omission> omitted;
 };
 
@@ -76,8 +79,8 @@ Elaboration elaborate(const PrecisionProfile& profile, RenderMode mode, Projecti
 // The same for a scene and its loaded volume (with elaborate_options).
 Elaboration elaborate(const Scene& scene, const Volume& volume, const GradientField& gradients);
 
-// Adds render.space_leaping (block memory sized for a volume of `dims`) and
-// render.jitter to `e`, or their omissions.
+// Adds render.space_leaping (block memory sized for a volume of `dims`),
+// render.jitter and render.partial_segments to `e`, or their omissions.
 void elaborate_options(Elaboration& e, const RenderDesc& render, const std::array<int, 3>& dims);
 
 }  // namespace voxcast::ref

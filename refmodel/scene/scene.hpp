@@ -61,6 +61,11 @@ struct RenderDesc {
   bool space_leaping = false;
   int leap_block = 8;           // cells per block edge: 4, 8, 16, 32 or 64
   bool jitter = false;
+  // Issue 19 part 2 (docs/pipeline.md §7a): weight the first and the last
+  // sample of each ray by the fractional length of the segment it stands for
+  // (opacity correction at the fractional step), so that the image is
+  // continuous in the camera.
+  bool partial_segments = false;
 };
 
 enum class LightType { Directional, Headlight };

@@ -41,7 +41,8 @@ const std::map<std::string, std::vector<std::string>>& schema() {
        {"projection", "eye", "center", "up", "fov_deg", "height", "stereo_deg", "path", "dolly"}},
       {"camera.path[]", {"eye", "center", "up"}},
       {"render", {"width", "height", "mode", "oversampling", "ert_threshold", "background",
-                  "frames", "threads", "algorithm", "space_leaping", "leap_block", "jitter"}},
+                  "frames", "threads", "algorithm", "space_leaping", "leap_block", "jitter",
+                  "partial_segments"}},
       {"lights[]", {"type", "direction", "intensity"}},
       // VIRIM (docs/heidelberg.md).
       {"heidelberg", {"diffuse_0", "diffuse_45", "specular_45", "luminosity", "light",
@@ -461,6 +462,7 @@ void read_render(const TableReader& r, RenderDesc& d) {
   if ((d.leap_block & (d.leap_block - 1)) != 0)
     r.fail("leap_block", "= " + std::to_string(d.leap_block) + " must be a power of two (4..64)");
   d.jitter = r.boolean("jitter", d.jitter);
+  d.partial_segments = r.boolean("partial_segments", d.partial_segments);
 }
 
 void read_lights(const TableReader& root, std::vector<Light>& lights) {
@@ -618,6 +620,9 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   read_classification(top.table("classification"), s);
   if (top.has("camera")) read_camera(top.table("camera"), s.camera);
   read_render(top.table("render"), s.render);
+  if (s.render.partial_segments && s.algorithm == Algorithm::Heidelberg)
+    top.table("render").fail("partial_segments",
+                             "applies only to the ray caster (VIRIM composites whole slices)");
   read_lights(top, s.lights);
   read_precision(top.table("precision"), s);
   read_rtl(top.table("rtl"), s.base_dir, s.rtl);
@@ -722,7 +727,8 @@ std::string scene_to_toml(const Scene& s) {
                      {"threads", s.render.threads},
                      {"space_leaping", s.render.space_leaping},
                      {"leap_block", s.render.leap_block},
-                     {"jitter", s.render.jitter}};
+                     {"jitter", s.render.jitter},
+                     {"partial_segments", s.render.partial_segments}};
   toml::array lights;
   for (const Light& l : s.lights) {
     toml::table t{{"type", to_string(l.type)}, {"intensity", l.intensity}};

@@ -59,6 +59,8 @@ UnitLatencies elaborate_latencies(UnitLatencies l, const ElaboratedUnits& units)
   } else if (!units.shaded) {
     l.shading = std::min(l.shading, kUnshadedShadeStages);
   }
+  if (units.partial_segments && !units.mip)
+    l.shading = std::max(l.shading, hls::segment_opacity_depth);
   return l;
 }
 

@@ -21,6 +21,7 @@
 #include "hls/geometry_processor.hpp"
 #include "hls/interpolation_processor.hpp"
 #include "hls/reflectance_map.hpp"
+#include "hls/segment_opacity.hpp"
 #include "hls/shader.hpp"
 #include "hls/space_leaping_unit.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
@@ -102,6 +103,10 @@ struct ElaboratedUnits {
   bool shaded = true;
   bool perspective = true;
   bool leaping = false;
+  // render.partial_segments (docs/pipeline.md §7a): the segment-opacity unit
+  // runs beside the reflectance map and the shader; the stage takes the longer
+  // of the two (an unshaded frame's single clock grows to the unit's depth).
+  bool partial_segments = false;
 };
 // Stages of the rsqrt unit inside UnitLatencies::ray_setup (docs/pipeline.md
 // §1.2; hls/geometry_processor.hpp lists them).

@@ -26,6 +26,10 @@
 //   - Samples of a ray that has ended by early ray termination are dropped at
 //     interpolation or at the compositor; the ray's slot is freed when none of
 //     its samples is left in flight.
+//   - render.partial_segments (docs/pipeline.md §7a): the classification
+//     stage's entry takes the segment-opacity unit's weighted alpha for a
+//     ray's first and last samples (hls::segment_opacity, the weights from
+//     hls::segment_weights at set-up); its clocks overlap the shading stage.
 //   - Each unit is a pipeline of its latency with one result per clock; the
 //     FIFO after it has latency + fifo_depth entries (valid/ready).
 // A frame ends when the last pixel is written and every sample still in
@@ -140,7 +144,8 @@ class RayPipeline {
     c.latency = elaborate_latencies(
         c.latency, {frame.mode == hls::FrameMode::Mip, frame.mode == hls::FrameMode::Shaded,
                     frame.geometry.perspective,
-                    frame.leap.enabled && frame.mode != hls::FrameMode::Mip});
+                    frame.leap.enabled && frame.mode != hls::FrameMode::Mip,
+                    frame.segments.enabled && frame.mode != hls::FrameMode::Mip});
     return c;
   }
 
@@ -220,6 +225,7 @@ class RayPipeline {
     typename G::step_t s[3];
     hls::Accumulator<P> acc;
     typename C::value_t peak = 0;
+    hls::SegmentWeights<P> weights;  // §7a: the first and last samples' segment weights
     // The next sample's bank access and DIMM addresses, computed once and
     // held until it is issued (row-hit issue compares them every clock).
     bool next_known = false;
@@ -441,7 +447,13 @@ class RayPipeline {
     out.k = in.k;
     out.pos = in.pos;
     out.s = in.s;
-    if (!mip_) out.e = hls::classify<P>(f_.class_table, in.s.value);
+    if (!mip_) {
+      const Slot& s = slots_[static_cast<std::size_t>(in.slot)];
+      out.e = hls::classify<P>(f_.class_table, in.s.value);
+      out.e.alpha = hls::segment_opacity<P>(f_.segments, hls::class_address<P>(in.s.value),
+                                            out.e.alpha,
+                                            hls::sample_weight<P>(s.weights, in.pos, s.n));
+    }
     class_.push(out);
     ++events_;
   }
@@ -715,6 +727,7 @@ class RayPipeline {
       s.y = y;
       s.ready_at = ready;
       s.n = ray.n.to_uint64();
+      s.weights = hls::segment_weights<P>(f_.segments, ray, hls::pixel_jitter<P>(f_.geometry, x, y));
       s.free = false;
       s.in_issue = true;
       for (int k = 0; k < 3; ++k) {
