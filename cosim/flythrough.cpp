@@ -12,6 +12,7 @@
 
 #include "cosim/engines.hpp"
 #include "cosim/image_io.hpp"
+#include "cosim/truth.hpp"
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
@@ -79,6 +80,53 @@ FpsSummary summarise(const std::vector<FlythroughFrame>& frames) {
   return s;
 }
 
+// Frame f against frame f - 1, in output LSBs (TemporalStability).
+TemporalStability frame_stability(const ref::QuantImage& prev, const ref::QuantImage& cur,
+                                  const ref::Image* truth_prev, const ref::Image* truth_cur) {
+  TemporalStability s;
+  const double top = cur.full_scale();
+  std::size_t count = 0;
+  for (int y = 0; y < cur.height; ++y)
+    for (int x = 0; x < cur.width; ++x)
+      for (int c = 0; c < 4; ++c) {
+        const auto ch = static_cast<std::size_t>(c);
+        const double d = static_cast<double>(cur.at(x, y)[ch]) - static_cast<double>(prev.at(x, y)[ch]);
+        s.change_max = std::max(s.change_max, std::abs(d));
+        s.change_mean += std::abs(d);
+        if (truth_prev) {
+          const double t = (truth_cur->at(x, y)[c] - truth_prev->at(x, y)[c]) * top;
+          s.flicker_max = std::max(s.flicker_max, std::abs(d - t));
+          s.flicker_mean += std::abs(d - t);
+        }
+        ++count;
+      }
+  s.change_mean /= static_cast<double>(std::max<std::size_t>(count, 1));
+  s.flicker_mean /= static_cast<double>(std::max<std::size_t>(count, 1));
+  return s;
+}
+
+TemporalStability flight_stability(const std::vector<FlythroughFrame>& frames) {
+  TemporalStability s;
+  for (std::size_t f = 1; f < frames.size(); ++f) {
+    const TemporalStability& t = frames[f].stability;
+    s.change_max = std::max(s.change_max, t.change_max);
+    s.flicker_max = std::max(s.flicker_max, t.flicker_max);
+    s.change_mean += t.change_mean;
+    s.flicker_mean += t.flicker_mean;
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(frames.size(), 2) - 1);
+  s.change_mean /= n;
+  s.flicker_mean /= n;
+  return s;
+}
+
+nlohmann::json stability_json(const TemporalStability& t, bool truth) {
+  nlohmann::json j = {{"change_max_lsb", t.change_max}, {"change_mean_lsb", t.change_mean}};
+  j["flicker_max_lsb"] = truth ? nlohmann::json(t.flicker_max) : nlohmann::json(nullptr);
+  j["flicker_mean_lsb"] = truth ? nlohmann::json(t.flicker_mean) : nlohmann::json(nullptr);
+  return j;
+}
+
 nlohmann::json pci_json(const rtl::pci::PciStats& s) {
   return {{"bytes", s.bytes}, {"seconds", s.seconds}, {"mb_per_second", s.mb_per_second()}};
 }
@@ -89,7 +137,9 @@ void write_json(const std::string& path, const ref::Scene& scene, const Flythrou
   j["profile"] = scene.precision_name;
   j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
                 {"oversampling", scene.render.oversampling},
-                {"ert_threshold", scene.render.ert_threshold}};
+                {"ert_threshold", scene.render.ert_threshold},
+                {"partial_segments", scene.render.partial_segments}};
+  j["temporal_stability"] = stability_json(r.stability, r.has_truth);
   const FpsSummary fps = summarise(r.frames);
   j["fps"] = {{"min", fps.min}, {"mean", fps.mean}, {"max", fps.max},
               {"frames_at_least_20", fps.at_least_20}};
@@ -111,6 +161,7 @@ void write_json(const std::string& path, const ref::Scene& scene, const Flythrou
                       {"readback_ms", 1e3 * rb.readback_s},
                       {"stall_ms", 1e3 * rb.stall_s},
                       {"readback_hidden", rb.hidden},
+                      {"temporal_stability", stability_json(f.stability, r.has_truth)},
                       {"image", f.image}});
   }
   j["frames"] = frames;
@@ -155,6 +206,14 @@ FlythroughResult run_flythrough(const ref::Scene& scene, const FlythroughOptions
   FlythroughResult r;
   r.frames.resize(poses.size());
   std::vector<ref::Image> images(poses.size());
+  std::vector<ref::QuantImage> quantized(poses.size(), ref::QuantImage(1, 1, scene.precision.out_bits));
+  // The truth of each frame for the temporal stability (cosim/truth.hpp).
+  r.has_truth = options.truth_oversampling > 0.0;
+  std::vector<ref::Image> truths(r.has_truth ? poses.size() : 0);
+  const TruthSettings truth_settings{options.truth_oversampling > 0.0 ? options.truth_oversampling
+                                                                      : 16.0};
+  if (r.has_truth) check_truth_settings(truth_settings, scene);
+  const ref::Scene truth = truth_scene(scene, truth_settings);
   ref::parallel_for(
       static_cast<int>(poses.size()),
       [&](int f) {
@@ -168,8 +227,17 @@ FlythroughResult run_flythrough(const ref::Scene& scene, const FlythroughOptions
         out.stats = frame.stats;
         out.image = (dir / frame_name(f)).string();
         images[static_cast<std::size_t>(f)] = frame.image.to_image();
+        quantized[static_cast<std::size_t>(f)] = std::move(frame.image);
+        if (r.has_truth)
+          truths[static_cast<std::size_t>(f)] = ref::render_image(
+              ref::make_render_inputs(truth, sv.volume, sv.gradients, poses[f]), 1);
       },
       scene.render.threads);
+  for (std::size_t f = 1; f < poses.size(); ++f)
+    r.frames[f].stability = frame_stability(quantized[f - 1], quantized[f],
+                                            r.has_truth ? &truths[f - 1] : nullptr,
+                                            r.has_truth ? &truths[f] : nullptr);
+  r.stability = flight_stability(r.frames);
   r.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -223,6 +291,12 @@ void print_flythrough(std::ostream& os, const ref::Scene& scene, const Flythroug
      << "pci      volume upload " << r.host.volume.seconds << " s once; image readback "
      << 1e3 * r.host.image.seconds << " ms per frame (closed form; clocked "
      << 1e3 * r.clocked_readback.seconds << " ms, double-buffered behind the next frame)\n"
+     << "stable   frame-to-frame change " << r.stability.change_max << " LSB max, "
+     << r.stability.change_mean << " LSB mean";
+  if (r.has_truth)
+    os << "; flicker against the truth's change " << r.stability.flicker_max << " LSB max, "
+       << r.stability.flicker_mean << " LSB mean";
+  os << (scene.render.partial_segments ? " (partial segments)" : "") << "\n"
      << "host     " << r.wall_seconds << " s to simulate\n"
      << "wrote    " << r.animation << ", " << r.csv << ", " << r.json << ", frame_*.png\n";
 }

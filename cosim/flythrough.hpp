@@ -21,6 +21,20 @@ struct FlythroughOptions {
   std::string out_dir;
   int frames = 0;              // 0: the scene's render.frames if > 1, else 24
   int animation_fps = 10;      // playback rate of the GIF (not the modelled rate)
+  // Temporal stability against the truth (cosim/truth.hpp) at this
+  // oversampling, rendered per frame with the float reference; 0: no truth
+  // (the figure is then the rendered change alone).
+  double truth_oversampling = 16.0;
+};
+
+// Temporal stability of frame f against frame f - 1 (issue 19 part 2), over
+// every pixel channel in output LSBs: the rendered frame-to-frame change
+// d = I_f - I_{f-1}, and the flicker |d - t| against the truth's change t =
+// T_f - T_{f-1} (the truth in LSBs, unrounded): the change the truth does
+// not have. Frame 0 has none (zeros).
+struct TemporalStability {
+  double change_max = 0.0, change_mean = 0.0;
+  double flicker_max = 0.0, flicker_mean = 0.0;  // 0 without a truth
 };
 
 struct FlythroughFrame {
@@ -28,6 +42,7 @@ struct FlythroughFrame {
   ref::CameraPose pose;
   rtl::pipeline::RtlStats stats;  // the card's timing of this frame
   std::string image;              // the frame's PNG
+  TemporalStability stability;    // against the previous frame
 };
 
 struct FlythroughResult {
@@ -39,6 +54,10 @@ struct FlythroughResult {
   // buffered frame buffer): readback time, stall, hidden or not.
   rtl::pci::PciStats clocked_readback;
   std::vector<rtl::pci::FrameReadback> readback;
+  // The flight's temporal stability: the largest of the frames' maxima and the
+  // mean of their means (frames 1 .. n-1).
+  TemporalStability stability;
+  bool has_truth = false;
   std::string animation, csv, json;
   double wall_seconds = 0.0;     // host time to simulate every frame
 };

@@ -174,6 +174,10 @@ int main(int argc, char** argv) {
                   "Frames along the path (default: render.frames if > 1, else 24)");
   fly->add_option("--gif-fps", fly_opts.animation_fps, "Playback rate of the GIF")
       ->capture_default_str();
+  fly->add_option("--truth-oversampling", fly_opts.truth_oversampling,
+                  "Oversampling of the truth the temporal stability is measured against "
+                  "(0: no truth, the rendered frame-to-frame change only)")
+      ->capture_default_str();
   add_set_option(*fly, fly_sets);
 
   // demo

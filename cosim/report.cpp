@@ -10,6 +10,7 @@
 
 #include "cosim/engines.hpp"
 #include "hls/compositor.hpp"
+#include "hls/segment_opacity.hpp"
 #include "hls/widths.hpp"
 #include "refmodel/error.hpp"
 
@@ -301,6 +302,38 @@ UnitOps jitter(const ProfileFields& f) {
   return u;
 }
 
+// render.partial_segments (docs/pipeline.md §7a, hls/segment_opacity.hpp): the
+// ray's two weights at set-up, the optical-depth table beside the
+// classification table, w·tau2, the 2^-x ROM and its lerp, the shift and U(1 - v).
+UnitOps segment_opacity(const ProfileFields& f) {
+  UnitOps u{"segment_opacity", "§7a", {}, 0, 1};
+  auto& o = u.ops;
+  const int w = wd::segment_weight_bits(f);
+  const int mant = wd::segment_mant_bits(f);
+  const int lf = wd::segment_lerp_frac_bits(f);
+  o.push_back(add("d = k_out - k_in", 1, wd::clip_quotient_bits(f)));
+  o.push_back(add("first = 1 + j or frac(d) + j", 2, w));
+  o.push_back(reg("the ray's first and last weights", 2 * w));
+  o.push_back(cmp("k = 0, k = n - 1", 2, wd::count_bits(f)));
+  o.push_back(mux("the sample's weight", 1, w, 3));
+  o.push_back(cmp("w = 1 (bypass)", 1, w));
+  o.push_back(mem(OpKind::Ram, "optical depth tau2 per classification entry", 1,
+                  wd::class_entries(f), wd::segment_tau_bits(f)));
+  o.push_back(mul("w·tau2", 1, w, false, wd::segment_tau_bits(f), false));
+  o.push_back(add("y rounding", 1, wd::segment_y_bits(f)));
+  o.push_back(mem(OpKind::Rom, "2^-x ROM (two adjacent entries per read)", 1,
+                  wd::segment_rom_entries(f), mant));
+  o.push_back(add("lerp: e0 - e1", 1, mant));
+  o.push_back(mul("lerp: (e0 - e1)·u", 1, mant, false, lf, false));
+  o.push_back(add("lerp: e0 - · and rounding", 1, mant + lf));
+  o.push_back(cmp("floor(y) > ab + 2", 1, wd::segment_y_int_bits(f)));
+  o.push_back(mux("m·2^-s (shifter)", 1, wd::segment_scaled_bits(f), wd::segment_max_shift(f) + 1));
+  o.push_back(add("1 - v", 1, wd::segment_scaled_bits(f)));
+  o.push_back(add("U(·, ab) rounding", 1, f.alpha_bits + 1));
+  o.push_back(mux("alpha_c or alpha_w", 1, f.alpha_bits, 2));
+  return u;
+}
+
 // The FIFOs and ray slots of the cycle model's pipeline (rtl_model/pipeline),
 // at the widths of what they carry.
 UnitOps pipeline_buffers(const ProfileFields& f, const ref::Elaboration& e,
@@ -361,7 +394,7 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   // the cycle model (rsqrt in the ray set-up, stepping in the address stage, the
   // shader in the shading stage) are split by those depths.
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
-      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments});
   std::vector<UnitOps> units;
   auto put = [&](UnitOps u, int latency, int ii = 1) {
     u.latency = latency;
@@ -381,7 +414,12 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   if (e.classification) put(classification(f, e), l.classification);
   if (e.reflectance_map) put(reflectance(f), l.shading - hls::shader_depth);
   if (e.shader)
-    put(shader(f, e.reflectance_map), e.reflectance_map ? hls::shader_depth : l.shading);
+    put(shader(f, e.reflectance_map),
+        e.reflectance_map ? hls::shader_depth
+                          : std::min(l.shading, rtl::pipeline::kUnshadedShadeStages));
+  // Beside the reflectance map and the shader (the shading stage takes the
+  // longer of the two, elaborate_latencies).
+  if (e.partial_segments) put(segment_opacity(f), hls::segment_opacity_depth);
   if (e.compositor) put(compositor(f), hls::compositor_depth);
   if (e.ert) put(ert(f), hls::ert_depth);
   if (e.mip) put(mip(f), hls::mip_depth);
@@ -544,7 +582,7 @@ ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
     rep.units.push_back(std::move(ur));
   }
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
-      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping});
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments});
   rep.latency_ray_setup = l.ray_setup;
   // From a sample's address to its composited result (or the MIP register).
   rep.latency_sample = l.address + l.leap_lookup + l.interpolation + l.classification + l.shading +

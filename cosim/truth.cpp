@@ -37,6 +37,11 @@ ref::Scene truth_scene(const ref::Scene& scene, const TruthSettings& t) {
   // would not change it (docs/leaping.md) and is left off.
   s.render.jitter = false;
   s.render.space_leaping = false;
+  // One truth for a scene with and without render.partial_segments (so the two
+  // are measured against the same image, docs/accuracy.md): whole steps from
+  // the entry, as before the key existed; at the truth's oversampling its own
+  // end segments are 1/oversampling of a scene step.
+  s.render.partial_segments = false;
   return s;
 }
 
@@ -46,7 +51,7 @@ std::string truth_key(const ref::Scene& scene, const TruthSettings& t) {
   root.erase("rtl");
   if (toml::table* render = root["render"].as_table())
     for (const char* k : {"oversampling", "ert_threshold", "threads", "jitter", "space_leaping",
-                          "leap_block"})
+                          "leap_block", "partial_segments"})
       render->erase(k);
   std::ostringstream os;
   os << root << "\n# truth oversampling " << fmt(t.oversampling) << ", ERT "

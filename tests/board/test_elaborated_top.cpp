@@ -31,7 +31,8 @@ namespace hls = voxcast::hls;
 using voxcast::kBalanced;
 
 // The units the elaboration rules give (docs/resources.md, "Elaboration").
-// None of these scenes asks for render.space_leaping: no min-max memory.
+// None of these scenes asks for render.space_leaping or render.partial_segments:
+// no min-max memory, no segment-opacity unit.
 // MIP with a parallel camera: the maximum register only; no direction or
 // rsqrt unit, classification, gradients, reflectance map, shader, over
 // operator or ERT comparator.
@@ -44,7 +45,8 @@ constexpr hls::Units kMipParallel{.perspective = false,
                                   .compositor = false,
                                   .ert = false,
                                   .mip = true,
-                                  .space_leaping = false};
+                                  .space_leaping = false,
+                                  .partial_segments = false};
 // Perspective, unshaded, ERT off: no parallel origin, gradients, reflectance
 // map, ERT comparator or MIP unit.
 constexpr hls::Units kUnshadedNoErt{.perspective = true,
@@ -56,7 +58,8 @@ constexpr hls::Units kUnshadedNoErt{.perspective = true,
                                     .compositor = true,
                                     .ert = false,
                                     .mip = false,
-                                    .space_leaping = false};
+                                    .space_leaping = false,
+                                  .partial_segments = false};
 // Parallel, shaded, ERT on: everything but the perspective units and MIP.
 constexpr hls::Units kShadedParallel{.perspective = false,
                                      .parallel_direction = true,
@@ -67,7 +70,8 @@ constexpr hls::Units kShadedParallel{.perspective = false,
                                      .compositor = true,
                                      .ert = true,
                                      .mip = false,
-                                     .space_leaping = false};
+                                     .space_leaping = false,
+                                  .partial_segments = false};
 
 using Word = hls::InterpolationParams<voxcast::BalancedTraits>::packed_word_t;
 
@@ -114,7 +118,8 @@ std::map<std::string, bool> flags_of(const hls::Units& u) {
           {"gradients", u.gradients},           {"classification", u.classification},
           {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
           {"compositor", u.compositor},         {"ert", u.ert},
-          {"mip", u.mip},                       {"space_leaping", u.space_leaping}};
+          {"mip", u.mip},                       {"space_leaping", u.space_leaping},
+          {"partial_segments", u.partial_segments}};
 }
 
 std::string read(const fs::path& p) {

@@ -126,6 +126,18 @@ TEST(StreamedTop, SpaceLeapingEqualsTheEngine) {
                                 "space leaping, 4^3 blocks");
 }
 
+// render.partial_segments (§7a): each sample's segment weight rides with its
+// tokens to the classification stage; with jitter the first sample's weight
+// absorbs the gap before it, and leaps may skip a weighted first or last sample.
+TEST(StreamedTop, PartialSegmentsEqualTheEngine) {
+  expect_streamed_equals_engine(scene_with({"render.partial_segments=true"}), "partial segments");
+  expect_streamed_equals_engine(
+      scene_with({"render.partial_segments=true", "render.jitter=true",
+                  "render.space_leaping=true", "render.leap_block=4",
+                  "render.mode=\"unshaded\"", "precision.profile=\"vizard2\""}),
+      "partial segments, jitter, leaping, unshaded, vizard2");
+}
+
 TEST(StreamedTop, ParallelCameraAndOtherProfilesEqualTheEngine) {
   expect_streamed_equals_engine(scene_with({"camera.projection=\"parallel\""}), "parallel");
   expect_streamed_equals_engine(scene_with({"precision.profile=\"vizard2\""}), "vizard2 preset");
