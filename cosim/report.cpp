@@ -305,7 +305,7 @@ UnitOps jitter(const ProfileFields& f) {
 // render.partial_segments (docs/pipeline.md §7a, hls/segment_opacity.hpp): the
 // ray's two weights at set-up, the optical-depth table beside the
 // classification table, w·tau2, the 2^-x ROM and its lerp, the shift and U(1 - v).
-UnitOps segment_opacity(const ProfileFields& f) {
+UnitOps segment_opacity(const ProfileFields& f, const ref::Elaboration& e) {
   UnitOps u{"segment_opacity", "§7a", {}, 0, 1};
   auto& o = u.ops;
   const int w = wd::segment_weight_bits(f);
@@ -317,8 +317,9 @@ UnitOps segment_opacity(const ProfileFields& f) {
   o.push_back(cmp("k = 0, k = n - 1", 2, wd::count_bits(f)));
   o.push_back(mux("the sample's weight", 1, w, 3));
   o.push_back(cmp("w = 1 (bypass)", 1, w));
+  // One tau2 per classification entry the data can address (the class table's depth).
   o.push_back(mem(OpKind::Ram, "optical depth tau2 per classification entry", 1,
-                  wd::class_entries(f), wd::segment_tau_bits(f)));
+                  e.class_entries, wd::segment_tau_bits(f)));
   o.push_back(mul("w·tau2", 1, w, false, wd::segment_tau_bits(f), false));
   o.push_back(add("y rounding", 1, wd::segment_y_bits(f)));
   o.push_back(mem(OpKind::Rom, "2^-x ROM (two adjacent entries per read)", 1,
@@ -419,7 +420,7 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
                           : std::min(l.shading, rtl::pipeline::kUnshadedShadeStages));
   // Beside the reflectance map and the shader (the shading stage takes the
   // longer of the two, elaborate_latencies).
-  if (e.partial_segments) put(segment_opacity(f), hls::segment_opacity_depth);
+  if (e.partial_segments) put(segment_opacity(f, e), hls::segment_opacity_depth);
   if (e.compositor) put(compositor(f), hls::compositor_depth);
   if (e.ert) put(ert(f), hls::ert_depth);
   if (e.mip) put(mip(f), hls::mip_depth);
