@@ -620,9 +620,6 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   read_classification(top.table("classification"), s);
   if (top.has("camera")) read_camera(top.table("camera"), s.camera);
   read_render(top.table("render"), s.render);
-  if (s.render.partial_segments && s.algorithm == Algorithm::Heidelberg)
-    top.table("render").fail("partial_segments",
-                             "applies only to the ray caster (VIRIM composites whole slices)");
   read_lights(top, s.lights);
   read_precision(top.table("precision"), s);
   read_rtl(top.table("rtl"), s.base_dir, s.rtl);

@@ -19,6 +19,10 @@
 #include <vector>
 
 #include "cosim/engines.hpp"
+#include "cosim/report.hpp"
+#include "cosim/synth_script.hpp"
+#include "hls/units.hpp"
+#include "refmodel/scene/elaboration.hpp"
 #include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/bittrue/quantize.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
@@ -258,6 +262,42 @@ TEST(PartialSegments, EnginesBitExactAndShadedCyclesUnchanged) {
     }
   }
   EXPECT_GE(changed, 3);
+}
+
+// The key round-trips through the scene file; a scene without it (or in MIP)
+// elaborates no segment-opacity unit, one with it does, and the synthesized
+// top's unit set says so; the resource report prices the unit only when present.
+TEST(PartialSegments, SceneKeyElaborationAndReport) {
+  const ref::Scene on = ref::default_scene({"render.partial_segments=true"});
+  EXPECT_TRUE(ref::parse_scene(ref::scene_to_toml(on), "round trip", ".").render.partial_segments);
+  EXPECT_FALSE(ref::default_scene().render.partial_segments);
+  const cosim::SceneVolume sv = constant_volume(8);
+  const auto elaborate = [&](const ref::Overrides& sets) {
+    return ref::elaborate(ref::default_scene(sets), sv.volume, sv.gradients);
+  };
+  const auto omitted = [](const ref::Elaboration& e) {
+    for (const ref::Omission& o : e.omitted)
+      if (o.unit == "segment_opacity") return true;
+    return false;
+  };
+  const ref::Elaboration off = elaborate({}), with = elaborate({"render.partial_segments=true"}),
+                         mip = elaborate({"render.partial_segments=true", "render.mode=mip"});
+  EXPECT_FALSE(off.partial_segments);
+  EXPECT_TRUE(omitted(off));
+  EXPECT_TRUE(with.partial_segments);
+  EXPECT_FALSE(omitted(with));
+  EXPECT_FALSE(mip.partial_segments);
+  EXPECT_TRUE(omitted(mip));
+  EXPECT_TRUE(cosim::elaborated_units(with).partial_segments);
+  EXPECT_FALSE(cosim::elaborated_units(off).partial_segments);
+  EXPECT_TRUE(hls::consistent(cosim::elaborated_units(mip)));
+  const auto priced = [](const ref::Elaboration& e) {
+    for (const cosim::UnitOps& u : cosim::unit_operators(e, rtl::pipeline::PipelineConfig{}))
+      if (u.name == "segment_opacity") return true;
+    return false;
+  };
+  EXPECT_TRUE(priced(with));
+  EXPECT_FALSE(priced(off));
 }
 
 }  // namespace VOXCAST_UNITY_ID
