@@ -191,7 +191,8 @@ double bt_segment_alpha(const FrameSetup& fs, int addr, double alpha_c, double w
   const double e1 = from_raw(fs.segments->rom[at + 1], F);
   const double m = q_rnd(e0 - (e0 - e1) * u, F);
   // §7a.5: 2^-floor(y) clamped at ab + 2 (exact), then U(1 - v, ab).
-  const double v = std::ldexp(m, -static_cast<int>(std::min(fl, double{segment_max_shift(p)})));
+  const double s = std::min(fl, static_cast<double>(segment_max_shift(p)));
+  const double v = std::ldexp(m, -static_cast<int>(s));
   return u_frac(1.0 - v, p.alpha_bits);
 }
 

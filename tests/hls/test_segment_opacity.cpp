@@ -17,12 +17,11 @@
 #include <vector>
 
 #include "hls/segment_opacity.hpp"
+#include "preset_types.hpp"
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/bittrue/quantize.hpp"
 #include "refmodel/bittrue/shading.hpp"
 #include "refmodel/precision/preset_profiles.hpp"
-
-#include "preset_types.hpp"
 
 namespace VOXCAST_UNITY_ID {
 
@@ -127,7 +126,7 @@ TYPED_TEST(SegmentOpacityTest, BitExactAndWithinTheDerivedBound) {
 
 TYPED_TEST(SegmentOpacityTest, ClosedForms) {
   constexpr PrecisionProfile P = TestFixture::kP;
-  using Tr = typename TestFixture::Tr;
+  using Traits = typename TestFixture::Tr;
   const std::uint64_t top = (std::uint64_t{1} << P.alpha_bits) - 1;
   this->load({0, 1, static_cast<std::uint32_t>(top / 3), static_cast<std::uint32_t>(top)});
   for (int addr = 0; addr < 4; ++addr) {
@@ -136,15 +135,15 @@ TYPED_TEST(SegmentOpacityTest, ClosedForms) {
     typename TestFixture::addr_t a = static_cast<unsigned>(addr);
     typename TestFixture::weight_t one = 1, zero = 0;
     // w = 1: the table's alpha, bit for bit; w = 0: transparent.
-    EXPECT_EQ(hls::segment_opacity<Tr>(*this->tables_, a, ac, one).to_double(), ac.to_double());
-    EXPECT_EQ(hls::segment_opacity<Tr>(*this->tables_, a, ac, zero).to_double(), 0.0);
+    EXPECT_EQ(hls::segment_opacity<Traits>(*this->tables_, a, ac, one).to_double(), ac.to_double());
+    EXPECT_EQ(hls::segment_opacity<Traits>(*this->tables_, a, ac, zero).to_double(), 0.0);
   }
   // alpha_c = 0 is transparent for any weight.
   for (const std::uint64_t w : this->weights(20)) {
     typename TestFixture::weight_t wh;
     write_bits(wh, w);
     typename TestFixture::addr_t a = 0u;
-    EXPECT_EQ(hls::segment_opacity<Tr>(*this->tables_, a, typename TestFixture::alpha_t(0), wh)
+    EXPECT_EQ(hls::segment_opacity<Traits>(*this->tables_, a, typename TestFixture::alpha_t(0), wh)
                   .to_double(),
               0.0);
   }
@@ -155,18 +154,18 @@ TYPED_TEST(SegmentOpacityTest, ClosedForms) {
 // of one and of several samples.
 TYPED_TEST(SegmentOpacityTest, RayWeightsSumToTheLength) {
   constexpr PrecisionProfile P = TestFixture::kP;
-  using Tr = typename TestFixture::Tr;
-  using G = hls::GeometryParams<Tr>;
-  hls::SegmentOpacityTables<Tr> t;
+  using Traits = typename TestFixture::Tr;
+  using G = hls::GeometryParams<Traits>;
+  hls::SegmentOpacityTables<Traits> t;
   t.enabled = true;
   const int tf = P.t_frac_bits;
   std::mt19937_64 rng(5);
   for (int it = 0; it < 2000; ++it) {
     const std::uint64_t k_in0 = rng() % (std::uint64_t{40} << tf);
     const std::uint64_t j = it % 3 == 0 ? 0 : rng() % (std::uint64_t{1} << tf);
-    const std::uint64_t len = rng() % (std::uint64_t{(it % 4 == 0) ? 2 : 30} << tf);
+    const std::uint64_t len = rng() % (static_cast<std::uint64_t>(it % 4 == 0 ? 2 : 30) << tf);
     if (len < j) continue;  // the jitter moves the only sample past the exit: a miss
-    hls::RaySetup<Tr> ray;
+    hls::RaySetup<Traits> ray;
     ray.hit = true;
     typename G::k_t kin, kout, jit;
     kin = std::ldexp(static_cast<double>(k_in0 + j), -tf);
@@ -176,9 +175,9 @@ TYPED_TEST(SegmentOpacityTest, RayWeightsSumToTheLength) {
     ray.k_out = kout;
     const std::uint64_t n = ((len - j) >> tf) + 1;  // floor(k_out - k_in) + 1
     ray.n = n;
-    const hls::SegmentWeights<Tr> w = hls::segment_weights<Tr>(t, ray, jit);
+    const hls::SegmentWeights<Traits> w = hls::segment_weights<Traits>(t, ray, jit);
     double sum = 0.0;
-    for (std::uint64_t k = 0; k < n; ++k) sum += hls::sample_weight<Tr>(w, k, n).to_double();
+    for (std::uint64_t k = 0; k < n; ++k) sum += hls::sample_weight<Traits>(w, k, n).to_double();
     ASSERT_EQ(sum, std::ldexp(static_cast<double>(len), -tf)) << "n " << n << " j " << j;
     // The bit-true twin gives the same weights.
     bt::FrameSetup fs;

@@ -66,6 +66,7 @@ TEST(UnitDepths, ElaboratedCycleModelDropsTheAbsentUnitsDepths) {
   EXPECT_EQ(mip.interpolation, hls::interpolation_depth);
 }
 
+
 // ---- 2. The report --------------------------------------------------------------------------
 
 ref::Elaboration design(bool mip, bool shaded, bool perspective) {
@@ -178,6 +179,36 @@ PragmaList parse_latency_lines(const std::string& output) {
     out.insert({fn, constant, value});
   }
   return out;
+}
+
+// render.partial_segments (docs/pipeline.md §7a): the segment-opacity unit runs
+// beside the reflectance map and the shader. A shaded frame's shading stage
+// (4 clocks) covers its 3; an unshaded frame's single clock grows to 3; MIP has
+// no such stage.
+TEST(UnitDepths, SegmentOpacityOverlapsTheShadingStage) {
+  const pl::UnitLatencies base;
+  // {mip, shaded, perspective, leaping, partial_segments}
+  EXPECT_EQ(pl::elaborate_latencies(base, {false, true, true, false, true}).shading,
+            hls::reflectance_map_depth + hls::shader_depth);
+  EXPECT_GE(hls::reflectance_map_depth + hls::shader_depth, hls::segment_opacity_depth);
+  EXPECT_EQ(pl::elaborate_latencies(base, {false, false, true, false, true}).shading,
+            hls::segment_opacity_depth);
+  EXPECT_EQ(pl::elaborate_latencies(base, {true, false, true, false, true}).shading, 0);
+  // The report lists the unit at its depth; the sample's latency is the longer path.
+  const cosim::Part part = cosim::find_part("xc7a200t");
+  for (const bool shaded : {true, false}) {
+    ref::Elaboration e = design(false, shaded, true);
+    e.partial_segments = true;
+    ref::Elaboration e0 = e;
+    e0.partial_segments = false;
+    const auto with = cosim::estimate_resources(e, part);
+    const auto without = cosim::estimate_resources(e0, part);
+    EXPECT_EQ(latencies(with).at("segment_opacity"), hls::segment_opacity_depth);
+    EXPECT_EQ(latencies(with).at("shader"), hls::shader_depth);
+    EXPECT_EQ(latencies(without).count("segment_opacity"), 0u);
+    EXPECT_EQ(with.latency_sample - without.latency_sample,
+              shaded ? 0 : hls::segment_opacity_depth - hls::shader_depth);
+  }
 }
 
 TEST(UnitDepths, LatencyPragmasNameTheDeclaredDepths) {

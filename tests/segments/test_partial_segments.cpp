@@ -22,12 +22,12 @@
 #include "cosim/report.hpp"
 #include "cosim/synth_script.hpp"
 #include "hls/units.hpp"
-#include "refmodel/scene/elaboration.hpp"
 #include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/bittrue/quantize.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/bittrue/shading.hpp"
 #include "refmodel/render/raycaster.hpp"
+#include "refmodel/scene/elaboration.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 #include "rtl_model/engine.hpp"
 
@@ -54,10 +54,14 @@ ref::Scene issue_scene(const std::string& eye, bool partial, int n = 64, int ima
       "[volume]\nsource = \"phantom:box\"\n"
       "[classification]\ninterpolation = \"binary\"\npoints = [ {value = 0, alpha = 0.0}, "
       "{value = 50, color = [1, 1, 1], alpha = 0.1} ]\n"
-      "[camera]\neye = " + eye + "\ncenter = [" + c + ", " + c + ", " + c + "]\nfov_deg = 50\n"
-      "[render]\nwidth = " + std::to_string(image) + "\nheight = " + std::to_string(image) +
-      "\nmode = \"unshaded\"\nert_threshold = 1.0\n"
-      "partial_segments = " + (partial ? "true" : "false") + "\n",
+      "[camera]\neye = " +
+          eye + "\ncenter = [" + c + ", " + c + ", " + c +
+          "]\nfov_deg = 50\n"
+          "[render]\nwidth = " +
+          std::to_string(image) + "\nheight = " + std::to_string(image) +
+          "\nmode = \"unshaded\"\nert_threshold = 1.0\n"
+          "partial_segments = " +
+          (partial ? "true" : "false") + "\n",
       "issue 19 scene", ".");
 }
 
@@ -113,9 +117,9 @@ EyeMove eye_move(bool partial, const cosim::SceneVolume& sv) {
   const ref::Scene b = issue_scene("[31.51, -60, 40]", partial);
   EyeMove m;
   const auto render_ref = [&](const ref::Scene& s) {
-    return float_lsb(ref::render_image(ref::make_render_inputs(s, sv.volume, sv.gradients,
-                                                               s.camera.pose)),
-                     s.precision.out_bits);
+    return float_lsb(
+        ref::render_image(ref::make_render_inputs(s, sv.volume, sv.gradients, s.camera.pose)),
+        s.precision.out_bits);
   };
   const std::vector<long> ra = render_ref(a), rb = render_ref(b);
   m.ref = largest_change(ra, rb);
@@ -165,25 +169,25 @@ TEST(PartialSegments, ConstantMediumOpacityIsClosedFormForAnyLength) {
           "[camera]\nprojection = \"parallel\"\neye = [-9.3, -14.1, 19.7]\n"
           "center = [5.5, 5.5, 5.5]\nheight = 22\n"
           "[render]\nwidth = 24\nheight = 24\nmode = \"unshaded\"\nert_threshold = 1.0\n"
-          "oversampling = " + os + "\npartial_segments = true\njitter = " +
-              (jitter ? "true" : "false") + "\n",
+          "oversampling = " +
+              os + "\npartial_segments = true\njitter = " + (jitter ? "true" : "false") + "\n",
           "closed form", ".");
       const ref::RenderInputs in =
           ref::make_render_inputs(s, sv.volume, sv.gradients, s.camera.pose);
       const Frame f = prepare(s, sv);
       const PrecisionProfile& p = s.precision;
       const double alpha_c = bittrue::from_raw(f.setup.class_table[0].alpha, p.alpha_bits);
-      const double E = std::ldexp(1.0, -(p.alpha_bits + 1)) +
-                       (3.0 * std::log(2.0) + 3.0) *
-                           std::ldexp(1.0, -(bittrue::segment_frac_bits(p) + 1));
+      const double E =
+          std::ldexp(1.0, -(p.alpha_bits + 1)) +
+          (3.0 * std::log(2.0) + 3.0) * std::ldexp(1.0, -(bittrue::segment_frac_bits(p) + 1));
       int hits = 0;
       for (int y = 0; y < s.render.height; ++y)
         for (int x = 0; x < s.render.width; ++x) {
           const ref::Ray ray = ref::primary_ray(in.camera, x, y);
           const auto seg = ref::clip(ray, in.volume.world_box);
-          const glm::dvec4 rgba = ref::cast_ray(in.volume, in.tf, in.shading, in.settings, ray,
-                                                nullptr, nullptr,
-                                                ref::pixel_jitter(in.settings, x, y));
+          const glm::dvec4 rgba =
+              ref::cast_ray(in.volume, in.tf, in.shading, in.settings, ray, nullptr, nullptr,
+                            ref::pixel_jitter(in.settings, x, y));
           if (!seg) continue;
           const double L = seg->length();
           if (L >= in.settings.step * ref::pixel_jitter(in.settings, x, y)) {
@@ -195,10 +199,11 @@ TEST(PartialSegments, ConstantMediumOpacityIsClosedFormForAnyLength) {
           const bittrue::BtRay br = bittrue::bt_ray_setup(f.setup, x, y);
           if (!br.hit || t.trace.empty()) continue;
           ++hits;
-          const double j = f.setup.regs.jitter
-                               ? std::ldexp(static_cast<double>(ref::jitter_raw(x, y, p.t_frac_bits)),
-                                            -p.t_frac_bits)
-                               : 0.0;
+          const double j =
+              f.setup.regs.jitter
+                  ? std::ldexp(static_cast<double>(ref::jitter_raw(x, y, p.t_frac_bits)),
+                               -p.t_frac_bits)
+                  : 0.0;
           const double len = br.k_out - (br.k_in - j);
           const double expect = 1.0 - std::pow(1.0 - alpha_c, len);
           const double bound =
