@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "refmodel/bittrue/frame_setup.hpp"
+#include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/bittrue/geometry_bound.hpp"
 #include "refmodel/bittrue/heidelberg.hpp"
 #include "refmodel/bittrue/quantize.hpp"
@@ -348,35 +349,46 @@ void edge_hazards(const ref::Scene& scene, const ref::Volume& volume, std::vecto
   }
 }
 
-// ---- Geometry processor (§0-1): the first sample's position -----------------------------
+// ---- Geometry processor (§0-2): the samples' positions ------------------------------------
 //
-// Every sample of a ray lies within delta voxels (per component) of the float
-// reference's: the frame's worst case of the origin plane's rounding, the step
-// vector's error times the entry's lever and the rounding of p0
-// (bittrue::frame_first_sample_error_bound, docs/pipeline.md §0). Across the
-// data's steepest step D between neighbouring voxels a position error of delta
-// per component moves the trilinear sample value by up to 3·delta·D; as a share
-// of the data's range, in output LSB, that is the worst case reported (the
-// change of a transfer function that maps the data's range linearly onto the
-// output). The origin plane keeps delta independent of the eye's distance; it
-// still grows with the image's size (the origin and direction registers' rounding
-// times the pixel index) and the box's depth, and with narrow pos_frac_bits and
-// dir_frac_bits.
+// The frame's registers, loaded as the host would, give every ray's samples
+// p_j = p0 + j·s exactly; bittrue::frame_sample_position_error measures the
+// largest distance per axis, delta, of any sample from the float reference's
+// point at the same parameter (the origin plane's rounding, the step vector's
+// error times the entry's lever and the ray's length, p0's rounding: not a
+// bound but this frame's figure). Across the data's steepest step D between
+// neighbouring voxels a position error of delta per axis moves the trilinear
+// sample value by up to 3·delta·D; as a share of the data's range, in output
+// LSB, that is the worst case reported (the change of a transfer function that
+// maps the data's range linearly onto the output). The origin plane keeps delta
+// independent of the eye's distance; it grows with the image (the origin and
+// direction registers' rounding times the pixel index), the box's depth, and
+// narrow pos_frac_bits and dir_frac_bits.
 void geometry_hazards(const ref::Scene& scene, const ref::Volume& volume,
                       std::vector<Hazard>& out) {
   const PrecisionProfile& p = scene.precision;
   const double data_hi = volume.max_stored();
   if (!(data_hi > 0.0)) return;
   const ref::GradientField none;
-  const ref::RenderVolume rv = ref::make_render_volume(volume, none, scene.volume.crop);
-  const ref::CameraFrame cam = ref::make_camera_frame(
-      scene.camera, scene.camera.pose, scene.render.width, scene.render.height, rv.world_scale);
-  const double depth = bittrue::origin_plane_depth(p, cam, rv.world_scale, rv.index_box);
-  if (depth < 0.0) return;  // the host refuses the camera (make_frame_registers)
-  const double step = 1.0 / scene.render.oversampling;
-  const double delta = bittrue::frame_first_sample_error_bound(p, cam, rv.world_scale,
-                                                               rv.world_box, depth, step) /
-                       std::sqrt(3.0);
+  ref::RenderInputs in;
+  in.volume = ref::make_render_volume(volume, none, scene.volume.crop);
+  in.camera = ref::make_camera_frame(scene.camera, scene.camera.pose, scene.render.width,
+                                     scene.render.height, in.volume.world_scale);
+  in.settings.mode = scene.render.mode;
+  in.settings.step = 1.0 / scene.render.oversampling;
+  in.settings.ert_threshold = scene.render.ert_threshold;
+  if (scene.render.jitter) in.settings.jitter_bits = p.t_frac_bits;
+  bittrue::FrameRegisters regs;
+  try {
+    regs = bittrue::make_frame_registers(p, scene, in);
+  } catch (const Error&) {
+    return;  // the render refuses the camera itself, with this error
+  }
+  const std::vector<bittrue::Raw> seed =
+      regs.perspective ? bittrue::make_rsqrt_seed(p) : std::vector<bittrue::Raw>{};
+  const bittrue::SamplePositionError e = bittrue::frame_sample_position_error(
+      p, regs, seed, in.camera, in.volume.world_scale, in.settings.step);
+  const double delta = e.voxels;
   const double worst = full_scale(p) * std::min(1.0, 3.0 * delta * steepest_step(volume) / data_hi);
   if (worst < hazard_threshold(p)) return;
   const double distance = glm::length(scene.camera.pose.eye - scene.camera.pose.center);
@@ -386,9 +398,10 @@ void geometry_hazards(const ref::Scene& scene, const ref::Volume& volume,
                          worst);
   std::ostringstream w;
   w << "camera.eye " << guard_fmt(distance) << " voxels from camera.center, "
-    << scene.render.width << "x" << scene.render.height << " pixels: a sample may lie up to "
-    << guard_fmt(delta) << " voxels per axis from the float reference's (" << h.width
-    << ", the weight addressing resolves " << guard_fmt(std::ldexp(1.0, -p.weight_bits))
+    << scene.render.width << "x" << scene.render.height << " pixels: a sample of pixel ("
+    << e.x << ", " << e.y << ") lies " << guard_fmt(delta)
+    << " voxels along an axis from the float reference's (" << h.width
+    << "; the weight addressing resolves " << guard_fmt(std::ldexp(1.0, -p.weight_bits))
     << "), which the data's steepest edges turn into a sample value error of up to "
     << guard_fmt(100.0 * worst / full_scale(p)) << " % of its range; worst case "
     << guard_fmt(worst) << " LSB of an output channel";

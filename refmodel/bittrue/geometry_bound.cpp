@@ -1,5 +1,7 @@
 #include "refmodel/bittrue/geometry_bound.hpp"
 
+#include "refmodel/bittrue/geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -94,6 +96,41 @@ double frame_first_sample_error_bound(const PrecisionProfile& p, const ref::Came
       if (!seg) continue;
       const double k = seg->t_enter / step + 1.0;
       worst = std::max(worst, first_sample_error_bound(p, cam, world_scale, step, x, y, k));
+    }
+  return worst;
+}
+
+SamplePositionError frame_sample_position_error(const PrecisionProfile& p,
+                                                const FrameRegisters& regs,
+                                                const std::vector<Raw>& rsqrt_seed,
+                                                const ref::CameraFrame& cam,
+                                                const ref::Vec3& world_scale, double step,
+                                                int max_side) {
+  const auto stride_of = [&](int side) { return std::max(1, (side + max_side - 1) / max_side); };
+  const int sx = stride_of(cam.width), sy = stride_of(cam.height);
+  const auto axis = [](int n, int stride) {
+    std::vector<int> v;
+    for (int i = 0; i < n; i += stride) v.push_back(i);
+    if (v.back() != n - 1) v.push_back(n - 1);
+    return v;
+  };
+  SamplePositionError worst;
+  for (const int y : axis(cam.height, sy))
+    for (const int x : axis(cam.width, sx)) {
+      const BtRay ray = bt_ray_setup(p, regs, rsqrt_seed, x, y);
+      if (!ray.hit) continue;
+      const ref::Ray f = ref::origin_plane_ray(cam, x, y, regs.origin_depth);
+      const double last = static_cast<double>(ray.n - 1);
+      for (int a = 0; a < 3; ++a) {
+        const auto ia = static_cast<std::size_t>(a);
+        const auto line = [&](double k) {
+          return (f.origin[a] + k * step * f.direction[a]) / world_scale[a];
+        };
+        const double e0 = std::abs(ray.p0[ia] - line(ray.k_in));
+        const double e1 = std::abs(ray.p0[ia] + last * ray.s[ia] - line(ray.k_in + last));
+        const double e = std::max(e0, e1);
+        if (e > worst.voxels) worst = {e, x, y};
+      }
     }
   return worst;
 }

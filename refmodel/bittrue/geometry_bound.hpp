@@ -5,6 +5,9 @@
 // scene's worst case from them before anything renders.
 #pragma once
 
+#include <vector>
+
+#include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/math/geometry.hpp"
 #include "refmodel/precision/profile.hpp"
 #include "refmodel/render/camera.hpp"
@@ -59,5 +62,23 @@ double first_sample_error_bound(const PrecisionProfile& p, const ref::CameraFram
 double frame_first_sample_error_bound(const PrecisionProfile& p, const ref::CameraFrame& cam,
                                       const ref::Vec3& world_scale, const ref::Box& world_box,
                                       double depth, double step);
+
+// Not a bound but the frame's own figure, from its registers alone: the
+// largest distance, per axis and index space, of any sample p_j = p0 + j·s
+// (§1.6, §2; j = 0 .. n-1) of any ray from the float ray's point at the same
+// parameter on the origin plane's ray (ref::origin_plane_ray). Stepping is exact,
+// so a ray's error is affine in j and its largest is at j = 0 or j = n - 1.
+// Every pixel when the image is at most `max_side` pixels on each side; beyond,
+// every stride-th row and column (stride = ceil(side / max_side)) and the last.
+struct SamplePositionError {
+  double voxels = 0.0;  // the largest per-axis error
+  int x = -1, y = -1;   // the pixel that has it
+};
+SamplePositionError frame_sample_position_error(const PrecisionProfile& p,
+                                                const FrameRegisters& regs,
+                                                const std::vector<Raw>& rsqrt_seed,
+                                                const ref::CameraFrame& cam,
+                                                const ref::Vec3& world_scale, double step,
+                                                int max_side = 1024);
 
 }  // namespace voxcast::bittrue

@@ -65,7 +65,7 @@ struct RenderDesc {
   // sample of each ray by the fractional length of the segment it stands for
   // (opacity correction at the fractional step), so that the image is
   // continuous in the camera.
-  bool partial_segments = false;
+  bool partial_segments = true;
 };
 
 enum class LightType { Directional, Headlight };

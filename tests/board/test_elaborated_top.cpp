@@ -31,8 +31,9 @@ namespace hls = voxcast::hls;
 using voxcast::kBalanced;
 
 // The units the elaboration rules give (docs/resources.md, "Elaboration").
-// None of these scenes asks for render.space_leaping or render.partial_segments:
-// no min-max memory, no segment-opacity unit.
+// None of these scenes asks for render.space_leaping: no min-max memory. They
+// keep render.partial_segments' default (on): the segment-opacity unit where
+// there is an opacity to weight (not in MIP).
 // MIP with a parallel camera: the maximum register only; no direction or
 // rsqrt unit, classification, gradients, reflectance map, shader, over
 // operator or ERT comparator.
@@ -47,8 +48,8 @@ constexpr hls::Units kMipParallel{.perspective = false,
                                   .mip = true,
                                   .space_leaping = false,
                                   .partial_segments = false};
-// Perspective, unshaded, ERT off: no parallel origin, gradients, reflectance
-// map, ERT comparator or MIP unit.
+// Perspective, unshaded, ERT off: no view-direction register, gradients,
+// reflectance map, ERT comparator or MIP unit.
 constexpr hls::Units kUnshadedNoErt{.perspective = true,
                                     .parallel_direction = false,
                                     .gradients = false,
@@ -59,7 +60,7 @@ constexpr hls::Units kUnshadedNoErt{.perspective = true,
                                     .ert = false,
                                     .mip = false,
                                     .space_leaping = false,
-                                  .partial_segments = false};
+                                    .partial_segments = true};
 // Parallel, shaded, ERT on: everything but the perspective units and MIP.
 constexpr hls::Units kShadedParallel{.perspective = false,
                                      .parallel_direction = true,
@@ -71,7 +72,7 @@ constexpr hls::Units kShadedParallel{.perspective = false,
                                      .ert = true,
                                      .mip = false,
                                      .space_leaping = false,
-                                  .partial_segments = false};
+                                     .partial_segments = true};
 
 using Word = hls::InterpolationParams<voxcast::BalancedTraits>::packed_word_t;
 

@@ -27,7 +27,10 @@ TEST_P(ConstantSlab, CentrePixelOpacityIsTheClosedForm) {
   const OneRay r = cast_pixel(s, v, 16, 16);
   const double step = 1.0 / oversampling;
   const double n = static_cast<double>(r.stats.samples);
-  EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, n * step), 1e-9);
+  // render.partial_segments (the default): the last sample weighs by its
+  // fractional segment, so the opacity is that of the chord itself, 31 voxels,
+  // at every sampling rate (docs/pipeline.md §7a).
+  EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, 31.0), 1e-9);
   // The chord through the voxel-centre box is 31 voxels long; the n samples of
   // `step` cover it to within one step.
   EXPECT_NEAR(r.segment.length(), 31.0, 1e-12);
@@ -53,7 +56,8 @@ TEST_P(ConstantSlab, ObliquePerspectiveRayMatchesItsChord) {
     ASSERT_TRUE(r.stats.hit);
     const double step = 1.0 / oversampling;
     const double n = static_cast<double>(r.stats.samples);
-    EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, n * step), 1e-9);
+    // Partial segments (the default): the chord's own opacity at any rate.
+    EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, r.segment.length()), 1e-9);
     EXPECT_GE(n * step, r.segment.length());
     EXPECT_LE(n * step, r.segment.length() + step + 1e-12);
   }
@@ -216,7 +220,9 @@ TEST_P(DegenerateRays, GiveFiniteExpectedOpacity) {
   ASSERT_TRUE(r.stats.hit) << d.name;
   EXPECT_TRUE(std::isfinite(r.rgba.a));
   EXPECT_NEAR(r.segment.length(), d.expected_chord, 1e-12) << d.name;
-  EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, r.stats.samples), 1e-9) << d.name;
+  // Partial segments (the default): the opacity of the chord; the last of its
+  // chord + 1 samples sits on the exit and weighs 0.
+  EXPECT_NEAR(r.rgba.a, 1.0 - std::pow(1.0 - alpha, d.expected_chord), 1e-9) << d.name;
   EXPECT_EQ(r.stats.samples, static_cast<std::uint32_t>(d.expected_chord) + 1) << d.name;
 }
 

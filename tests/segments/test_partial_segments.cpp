@@ -237,7 +237,7 @@ TEST(PartialSegments, EnginesBitExactAndShadedCyclesUnchanged) {
         "render.mode=\"mip\"", "precision.profile=\"vizard2\""}) {
     SCOPED_TRACE(extra);
     ref::Overrides on = {"render.partial_segments=true"};
-    ref::Overrides off;
+    ref::Overrides off = {"render.partial_segments=false"};
     if (!extra.empty()) {
       on.push_back(extra);
       off.push_back(extra);
@@ -269,13 +269,18 @@ TEST(PartialSegments, EnginesBitExactAndShadedCyclesUnchanged) {
   EXPECT_GE(changed, 3);
 }
 
-// The key round-trips through the scene file; a scene without it (or in MIP)
-// elaborates no segment-opacity unit, one with it does, and the synthesized
-// top's unit set says so; the resource report prices the unit only when present.
+// The key round-trips through the scene file and is on by default (chosen from
+// the measurements in docs/accuracy.md, "Partial segments"); a scene with it off
+// (or in MIP) elaborates no segment-opacity unit, one with it does, and the
+// synthesized top's unit set says so; the resource report prices the unit only
+// when present.
 TEST(PartialSegments, SceneKeyElaborationAndReport) {
   const ref::Scene on = ref::default_scene({"render.partial_segments=true"});
   EXPECT_TRUE(ref::parse_scene(ref::scene_to_toml(on), "round trip", ".").render.partial_segments);
-  EXPECT_FALSE(ref::default_scene().render.partial_segments);
+  const ref::Scene off_scene = ref::default_scene({"render.partial_segments=false"});
+  EXPECT_FALSE(
+      ref::parse_scene(ref::scene_to_toml(off_scene), "round trip", ".").render.partial_segments);
+  EXPECT_TRUE(ref::default_scene().render.partial_segments);
   const cosim::SceneVolume sv = constant_volume(8);
   const auto elaborate = [&](const ref::Overrides& sets) {
     return ref::elaborate(ref::default_scene(sets), sv.volume, sv.gradients);
@@ -285,7 +290,8 @@ TEST(PartialSegments, SceneKeyElaborationAndReport) {
       if (o.unit == "segment_opacity") return true;
     return false;
   };
-  const ref::Elaboration off = elaborate({}), with = elaborate({"render.partial_segments=true"}),
+  const ref::Elaboration off = elaborate({"render.partial_segments=false"}),
+                         with = elaborate({}),
                          mip = elaborate({"render.partial_segments=true", "render.mode=mip"});
   EXPECT_FALSE(off.partial_segments);
   EXPECT_TRUE(omitted(off));
