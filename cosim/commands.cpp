@@ -1,4 +1,5 @@
 #include "cosim/commands.hpp"
+#include "cosim/files.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -87,9 +88,7 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
                 {"config", rtl_desc_json(scene.rtl)}};
   if (s.engine == Engine::Rtl && s.vcd_commands > 0) j["rtl"]["vcd_commands"] = s.vcd_commands;
   j["written"] = s.written;
-  std::ofstream out(path);
-  if (!out) throw Error(path + ": cannot write the report");
-  out << j.dump(2) << "\n";
+  write_json_file(path, j);
 }
 
 // One view with the chosen engine; the fixed-point engines' output is scaled
@@ -139,7 +138,14 @@ const char* to_string(Engine e) {
 RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) {
   if (scene.algorithm == ref::Algorithm::Heidelberg) return run_render_heidelberg(scene, options);
   RenderSummary s;
+  // Every argument before any work: the outputs' types and folders, the views.
   for (const std::string& out : options.outputs) check_image_path(out);
+  if (scene.render.frames > 1 && scene.camera.path.size() < 2)
+    throw Error(scene.origin + ": render.frames = " + std::to_string(scene.render.frames) +
+                " renders a camera path, but camera.path has " +
+                std::to_string(scene.camera.path.size()) + " keyframe(s); a path needs at least 2");
+  for (const std::string& out : options.outputs) make_parent_dir(out);
+  if (!options.report_json.empty()) make_parent_dir(options.report_json);
   const auto t_load = StopwatchClock::now();
   const SceneVolume sv = load_scene_volume(scene);
   const ref::Volume& volume = sv.volume;
@@ -164,18 +170,13 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options) 
     memory = bittrue::make_voxel_memory(scene.precision, volume, gradients);
   }
 
-  for (const std::string& out : options.outputs) {
-    const std::filesystem::path dir = std::filesystem::path(out).parent_path();
-    if (!dir.empty()) std::filesystem::create_directories(dir);
-  }
   // The VCD trace: one file per view (a trace is one frame's cycles), named
   // like the images: trace.vcd, or trace_L.vcd / trace_0003.vcd for the views
   // of a stereo pair or a camera path.
   rtl::trace::TraceOptions trace;
   if (!options.vcd_path.empty()) {
     if (!options.vcd_window.empty()) trace = rtl::trace::parse_window(options.vcd_window, "--vcd-window");
-    const std::filesystem::path dir = std::filesystem::path(options.vcd_path).parent_path();
-    if (!dir.empty()) std::filesystem::create_directories(dir);
+    make_parent_dir(options.vcd_path);
   }
   const auto t_render = StopwatchClock::now();
   for (const View& view : views_of(scene)) {

@@ -1,4 +1,5 @@
 #include "cosim/constraints.hpp"
+#include "cosim/files.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -287,7 +288,7 @@ std::string generate_constraints(const Board& b, ConstraintFormat f) {
 int check_constraint_goldens(const std::string& golden_dir, bool bless, std::ostream& log) {
   namespace fs = std::filesystem;
   int differ = 0;
-  if (bless) fs::create_directories(golden_dir);
+  if (bless) make_output_dir(golden_dir);
   for (const std::string& name : rtl::board::shipped_board_names()) {
     const Board b = rtl::board::shipped_board(name);
     for (const auto& [fmt, ext] :

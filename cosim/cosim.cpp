@@ -1,4 +1,5 @@
 #include "cosim/cosim.hpp"
+#include "cosim/files.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -73,7 +74,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   CosimResult r;
   r.truth = truth_settings;
   check_truth_settings(truth_settings, scene);
-  std::filesystem::create_directories(out_dir);
+  make_output_dir(out_dir);
   const SceneVolume sv = load_scene_volume(scene);
   // A profile the hls engine is not compiled for is still measured, through
   // the bit-true engine (which takes any profile at run time); bit-exactness
@@ -217,9 +218,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
                 {"mode", ref::to_string(scene.render.mode)},
                 {"oversampling", scene.render.oversampling}};
-  std::ofstream out(path("report.json"));
-  if (!out) throw Error(path("report.json") + ": cannot write the report");
-  out << j.dump(2) << "\n";
+  write_json_file(path("report.json"), j);
   r.written.push_back(path("report.json"));
   return r;
 }

@@ -1,4 +1,5 @@
 #include "cosim/flythrough.hpp"
+#include "cosim/files.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -165,9 +166,7 @@ void write_json(const std::string& path, const ref::Scene& scene, const Flythrou
                       {"image", f.image}});
   }
   j["frames"] = frames;
-  std::ofstream out(path);
-  if (!out) throw Error(path + ": cannot write");
-  out << j.dump(2) << "\n";
+  write_json_file(path, j);
 }
 
 // One frame's readback on the clocked PCI model: the frame buffer's RGBA8
@@ -191,7 +190,7 @@ FlythroughResult run_flythrough(const ref::Scene& scene, const FlythroughOptions
   const int n = frame_count(scene, options);
   if (options.out_dir.empty()) throw Error("flythrough: --out is empty");
   const std::filesystem::path dir(options.out_dir);
-  std::filesystem::create_directories(dir);
+  make_output_dir(dir.string());
 
   const auto t0 = std::chrono::steady_clock::now();
   const SceneVolume sv = load_scene_volume(scene);

@@ -1,4 +1,5 @@
 #include "cosim/heidelberg.hpp"
+#include "cosim/files.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -165,10 +166,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
     report_hazards(s.hazards, options.strict, std::cerr);
   }
   const bittrue::VirimMemory memory = bittrue::make_virim_memory(sv.volume);
-  for (const std::string& out : options.outputs) {
-    const std::filesystem::path dir = std::filesystem::path(out).parent_path();
-    if (!dir.empty()) std::filesystem::create_directories(dir);
-  }
+  for (const std::string& out : options.outputs) make_parent_dir(out);
   const std::vector<double> eyes = ref::heidelberg::eye_offsets(scene.heidelberg);
   const auto t_render = StopwatchClock::now();
   rtl::virim::VirimRtlStats rtl_stats;  // the last eye's
@@ -219,9 +217,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
                    {"threads", s.threads}};
     if (s.engine == Engine::Rtl) j["rtl"] = virim_rtl_json(scene, rtl_stats);
     j["written"] = s.written;
-    std::ofstream out(options.report_json);
-    if (!out) throw Error(options.report_json + ": cannot write the report");
-    out << j.dump(2) << "\n";
+    write_json_file(options.report_json, j);
     s.written.push_back(options.report_json);
   }
   return s;
@@ -230,7 +226,7 @@ RenderSummary run_render_heidelberg(const ref::Scene& scene, const RenderOptions
 CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out_dir,
                                  bool strict) {
   CosimResult r;
-  std::filesystem::create_directories(out_dir);
+  make_output_dir(out_dir);
   const SceneVolume sv = load_scene_volume(scene);
   r.hazards = precision_hazards(scene, sv.volume);
   report_hazards(r.hazards, strict, std::cerr);
@@ -330,9 +326,7 @@ CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out
                      {"reproducer", r.mismatch.reproducer}};
   j["seconds"] = {{"float", r.seconds_float}, {"bittrue", r.seconds_bittrue}, {"hls", r.seconds_hls},
                   {"rtl", r.seconds_rtl}};
-  std::ofstream out(path("report.json"));
-  if (!out) throw Error(path("report.json") + ": cannot write the report");
-  out << j.dump(2) << "\n";
+  write_json_file(path("report.json"), j);
   r.written.push_back(path("report.json"));
   return r;
 }

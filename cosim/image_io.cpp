@@ -27,6 +27,11 @@ void write_pixels(const std::string& path, const OIIO::ImageSpec& spec, const vo
     throw Error(path + ": " + out->geterror());
 }
 
+// Same inputs, same bytes: OpenImageIO stamps an EXR with the time of writing
+// (a DateTime attribute, OpenEXR's capDate) unless the spec names one; an
+// empty DateTime writes none.
+void unstamped(OIIO::ImageSpec& spec) { spec.attribute("DateTime", ""); }
+
 std::uint8_t to_8bit(double v) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
 }
@@ -58,6 +63,7 @@ void write_image(const std::string& path, const ref::Image& image, const glm::dv
       for (int c = 0; c < 4; ++c) rgba[4 * i + c] = static_cast<float>(image.pixels[i][c]);
     OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
     spec.attribute("compression", "zip");
+    unstamped(spec);
     write_pixels(path, spec, rgba.data());
   } else if (ext == ".png") {
     const std::vector<std::uint8_t> rgb = to_rgb8(image, background);
@@ -77,6 +83,7 @@ void write_exr_layers(const std::string& path, const std::vector<Layer>& layers)
   for (const Layer& l : layers)
     for (const char* c : {"R", "G", "B", "A"}) spec.channelnames.push_back(l.name + "." + c);
   spec.attribute("compression", "zip");
+  unstamped(spec);
   std::vector<float> data(static_cast<std::size_t>(w) * h * nch);
   for (std::size_t li = 0; li < layers.size(); ++li) {
     const ref::Image& img = *layers[li].image;

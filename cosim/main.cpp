@@ -1,7 +1,11 @@
 // voxcast: the command-line tool. Each subcommand is a thin shell over a
 // function in cosim/commands.hpp; every failure is one line on stderr and a
 // non-zero exit code.
+#include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -24,6 +28,70 @@
 namespace {
 
 using voxcast::ref::Overrides;
+
+// The exit statuses (README, "Exit status"): 0 success; 1 an error in the
+// input (a scene, a volume, an option's value); 2 an internal error; 3 the
+// engines differ; 4 regress / constraints: golden files differ; 5 tune: no point meets the target; 6 --strict: precision
+// hazards; 7 fuzz-scenes: findings; 64 a malformed command line (EX_USAGE).
+constexpr int kUsageError = 64;
+
+// Edit distance (insertions, deletions, substitutions) between two words.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown subcommand 'renderr'; did you mean 'render'?" when the first word
+// is no subcommand (empty when it is one, or an option).
+std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  const std::string word = argv[1];
+  std::string nearest;
+  std::size_t best = std::string::npos;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (sub->get_name() == word) return "";
+    const std::size_t d = edit_distance(word, sub->get_name());
+    if (d < best) best = d, nearest = sub->get_name();
+  }
+  std::string msg = "unknown subcommand '" + word + "'";
+  if (best <= std::max<std::size_t>(2, word.size() / 3)) msg += "; did you mean '" + nearest + "'?";
+  return msg + " (voxcast --help lists the subcommands)";
+}
+
+// A command-line error as every other error: one line naming what is wrong,
+// and where help is.
+int usage_error(const CLI::App& app, const CLI::ParseError& e) {
+  std::string where = "voxcast";
+  for (const CLI::App* sub : app.get_subcommands()) where += " " + sub->get_name();
+  std::string what = e.what();
+  std::replace(what.begin(), what.end(), '\n', ' ');
+  while (!what.empty() && what.back() == ' ') what.pop_back();
+  std::cerr << "voxcast: " << what << " (" << where << " --help)\n";
+  return kUsageError;
+}
+
+// A finite number above 0 (CLI::Range lets NaN through: it compares).
+const CLI::Validator kPositiveFinite(
+    [](std::string& text) -> std::string {
+      try {
+        std::size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v) && v > 0.0) return "";
+      } catch (const std::exception&) {
+      }
+      return "must be a finite number above 0, not '" + text + "'";
+    },
+    "NUMBER > 0");
 
 void add_set_option(CLI::App& cmd, Overrides& overrides) {
   cmd.add_option("--set", overrides,
@@ -172,7 +240,8 @@ int main(int argc, char** argv) {
   fly->add_option("--out", fly_opts.out_dir, "Output folder")->required();
   fly->add_option("--frames", fly_opts.frames,
                   "Frames along the path (default: render.frames if > 1, else 24)");
-  fly->add_option("--gif-fps", fly_opts.animation_fps, "Playback rate of the GIF")
+  fly->add_option("--gif-fps", fly_opts.animation_fps, "Playback rate of the GIF (1..100)")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   fly->add_option("--truth-oversampling", fly_opts.truth_oversampling,
                   "Oversampling of the truth the temporal stability is measured against "
@@ -248,7 +317,9 @@ int main(int argc, char** argv) {
       "tune", "Cheapest precision widths (resource model) meeting a PSNR target (bit-true engine)");
   tune->add_option("scene", tune_scene, "Scene file (TOML)")->required();
   tune->add_option("--target-psnr", tune_opts.target_psnr_db, "Target PSNR in dB against the "
-                   "truth")->required();
+                   "truth (exit status 5 when no point meets it)")
+      ->required()
+      ->check(kPositiveFinite);
   tune->add_option("--truth-oversampling", tune_opts.truth.oversampling,
                    "Oversampling of the truth (the float reference)")
       ->capture_default_str();
@@ -261,10 +332,16 @@ int main(int argc, char** argv) {
                  "the answer may then not be the cheapest)");
   add_set_option(*tune, tune_sets);
 
+  if (const std::string word = unknown_subcommand(app, argc, argv); !word.empty()) {
+    std::cerr << "voxcast: " << word << "\n";
+    return kUsageError;
+  }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::Success& e) {  // --help, --help-all, --version
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return usage_error(app, e);
   }
 
   try {

@@ -1,4 +1,5 @@
 #include "cosim/paper.hpp"
+#include "cosim/files.hpp"
 
 #include <cmath>
 #include <exception>
@@ -206,9 +207,7 @@ void write_json(const Vizard2Options& o, const Vizard2Result& r, const std::stri
   j["ramp_lowers_rate"] = r.ramp_lowers_rate;
   j["finding"] = r.finding;
   j["warnings"] = r.warnings;
-  std::ofstream out(path);
-  if (!out) throw Error(path + ": cannot write");
-  out << j.dump(2) << "\n";
+  write_json_file(path, j);
 }
 
 void write_markdown(const Vizard2Options& o, const Vizard2Result& r, const std::string& path) {
@@ -317,7 +316,7 @@ Vizard2Result run_vizard2(const Vizard2Options& o) {
   if (o.volume_size < 16 || o.volume_size > 512)
     throw Error("paper vizard2: --volume-size " + std::to_string(o.volume_size) +
                 " is outside [16, 512]");
-  std::filesystem::create_directories(o.out_dir);
+  make_output_dir(o.out_dir);
   const std::filesystem::path dir(o.out_dir);
   Vizard2Result r;
   const SceneVolume sv = load_scene_volume(vizard2_scene(o, "binary", 1.0));

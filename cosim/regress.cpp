@@ -1,4 +1,5 @@
 #include "cosim/regress.hpp"
+#include "cosim/files.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -121,10 +122,8 @@ CaseResult run_case(const RegressOptions& o, const ref::Scene& scene, const Scen
                                {"rms_err_lsb", a.rms_err_lsb},
                                {"floor_psnr_db", floor.psnr_db},
                                {"floor_pct_within_1lsb", floor.pct_within_1lsb}};
-      fs::create_directories(o.golden_dir);
-      std::ofstream out(gpath);
-      if (!out) throw Error(gpath + ": cannot write the golden file");
-      out << j.dump(2) << "\n";
+      make_output_dir(o.golden_dir);
+      write_json_file(gpath, j);
       r.status = "blessed";
     }
   } else if (!fs::exists(gpath)) {

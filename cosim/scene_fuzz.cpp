@@ -1,4 +1,5 @@
 #include "cosim/scene_fuzz.hpp"
+#include "cosim/files.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -207,7 +208,7 @@ SceneFuzzResult run_scene_fuzz(const SceneFuzzOptions& o) {
     if (!v.finding()) continue;
     SceneFuzzFinding f{i, {}, v};
     if (!o.out_dir.empty()) {
-      std::filesystem::create_directories(o.out_dir);
+      make_output_dir(o.out_dir);
       f.scene_file = (std::filesystem::path(o.out_dir) /
                       ("scene_" + std::to_string(o.seed) + "_" + std::to_string(i) + ".toml"))
                          .string();

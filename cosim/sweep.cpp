@@ -1,4 +1,5 @@
 #include "cosim/sweep.hpp"
+#include "cosim/files.hpp"
 
 #include <toml++/toml.h>
 #include <unistd.h>
@@ -275,9 +276,7 @@ void write_run_json(const std::string& path, const SweepOptions& o, const SweepS
       {"point_seconds", nlohmann::json::object()}};
   for (const PointOutcome& p : outcomes)
     j["point_seconds"][std::to_string(p.row.index)] = p.seconds;
-  std::ofstream out(path);
-  if (!out) throw Error(path + ": cannot write");
-  out << j.dump(2) << "\n";
+  write_json_file(path, j);
 }
 
 }  // namespace
@@ -339,7 +338,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   } catch (const Error& e) {
     throw Error(std::string("sweep: --part: ") + e.what());
   }
-  std::filesystem::create_directories(o.out_dir);
+  make_output_dir(o.out_dir);
   const auto t0 = StopwatchClock::now();
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < plan.size(); ++i)
@@ -402,7 +401,7 @@ SweepSummary run_sweep_merge(const std::vector<std::string>& dirs, const std::st
   }
   Table t = merge_tables(shards, origins);
   for (const Front& f : pareto_fronts()) mark_front(t, f);
-  std::filesystem::create_directories(out_dir);
+  make_output_dir(out_dir);
   SweepSummary s;
   s.merged = true;
   s.points = t.rows.size();

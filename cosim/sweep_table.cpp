@@ -1,4 +1,5 @@
 #include "cosim/sweep_table.hpp"
+#include "cosim/files.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -194,10 +195,7 @@ Table table_from_json(const nlohmann::json& j, const std::string& origin) {
 }
 
 void write_json(const Table& t, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw Error(path + ": cannot write");
-  out << to_json(t).dump(2) << "\n";
-  if (!out) throw Error(path + ": write failed");
+  write_json_file(path, to_json(t));
 }
 
 Table read_json(const std::string& path) {

@@ -85,6 +85,10 @@ struct Origins {
       if (key == k || key.rfind(k + ".", 0) == 0 || key.rfind(k + "[", 0) == 0) return o;
     if (node && node->source().begin.line > 0)
       return file + ":" + std::to_string(node->source().begin.line);
+    // A table no line of the file holds was made by an override of a key in it
+    // (--set bogus.key=1 makes the table "bogus").
+    for (const auto& [k, o] : overridden)
+      if (k.rfind(key + ".", 0) == 0 || k.rfind(key + "[", 0) == 0) return o;
     return file;
   }
 };
