@@ -1,4 +1,5 @@
 #include "cosim/bench.hpp"
+#include "cosim/progress.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -22,12 +23,15 @@ namespace {
 
 // Median and minimum wall time of `repeats` runs of `frame` after one warm-up.
 void time_frames(const std::function<std::uint64_t()>& frame, int repeats, BenchResult& r) {
+  Progress progress("bench " + r.engine, static_cast<std::size_t>(repeats) + 1);
   r.samples = frame();  // warm-up (caches, page faults); also the sample count
+  progress.step();
   std::vector<double> t;
   for (int i = 0; i < repeats; ++i) {
     const auto t0 = StopwatchClock::now();
     frame();
     t.push_back(seconds_since(t0));
+    progress.step();
   }
   std::sort(t.begin(), t.end());
   r.median_seconds = t[t.size() / 2];

@@ -1,4 +1,5 @@
 #include "cosim/flythrough.hpp"
+#include "cosim/progress.hpp"
 #include "cosim/files.hpp"
 
 #include <algorithm>
@@ -213,6 +214,7 @@ FlythroughResult run_flythrough(const ref::Scene& scene, const FlythroughOptions
                                                                       : 16.0};
   if (r.has_truth) check_truth_settings(truth_settings, scene);
   const ref::Scene truth = truth_scene(scene, truth_settings);
+  Progress progress("flythrough", poses.size());
   ref::parallel_for(
       static_cast<int>(poses.size()),
       [&](int f) {
@@ -230,6 +232,7 @@ FlythroughResult run_flythrough(const ref::Scene& scene, const FlythroughOptions
         if (r.has_truth)
           truths[static_cast<std::size_t>(f)] = ref::render_image(
               ref::make_render_inputs(truth, sv.volume, sv.gradients, poses[f]), 1);
+        progress.step();
       },
       scene.render.threads);
   for (std::size_t f = 1; f < poses.size(); ++f)

@@ -1,4 +1,5 @@
 #include "cosim/paper.hpp"
+#include "cosim/progress.hpp"
 #include "cosim/files.hpp"
 
 #include <cmath>
@@ -321,7 +322,9 @@ Vizard2Result run_vizard2(const Vizard2Options& o) {
   Vizard2Result r;
   const SceneVolume sv = load_scene_volume(vizard2_scene(o, "binary", 1.0));
 
-  // One truth per transfer function.
+  // One truth per transfer function, then the cells.
+  const std::size_t n = kTransferFunctions.size() * kOversampling.size();
+  Progress progress("paper vizard2", kTransferFunctions.size() + n);
   std::vector<ref::Image> truths;
   for (const std::string& tf : kTransferFunctions) {
     const ref::Scene scene = vizard2_scene(o, tf, 1.0);
@@ -329,10 +332,10 @@ Vizard2Result run_vizard2(const Vizard2Options& o) {
     const std::string file = "truth_" + tf + ".png";
     write_image((dir / file).string(), truths.back(), scene.render.background);
     r.written.push_back((dir / file).string());
+    progress.step();
   }
   // The cells in parallel (the cycle model is one thread per frame), each
   // writing only its own slot.
-  const std::size_t n = kTransferFunctions.size() * kOversampling.size();
   std::vector<CellResult> cells(n);
   std::vector<std::vector<std::string>> warnings(n);
   std::vector<std::exception_ptr> failures(n);
@@ -348,6 +351,7 @@ Vizard2Result run_vizard2(const Vizard2Options& o) {
         } catch (...) {
           failures[k] = std::current_exception();
         }
+        progress.step();
       },
       workers);
   for (const std::exception_ptr& f : failures)

@@ -1,4 +1,5 @@
 #include "cosim/regress.hpp"
+#include "cosim/progress.hpp"
 #include "cosim/files.hpp"
 
 #include <algorithm>
@@ -158,6 +159,9 @@ int run_regress(const RegressOptions& o, std::ostream& os) {
   std::sort(scenes.begin(), scenes.end());
   if (scenes.empty()) throw Error(o.scenes_dir + ": no *.toml scenes");
   int failed = 0, cases = 0;
+  // A scene is one case (VIRIM) or one per preset; the count is known only once
+  // loaded, so the bar counts scenes.
+  Progress progress("regress", scenes.size());
   for (const fs::path& path : scenes) {
     const std::string name = path.stem().string();
     // One volume load per scene, shared by its profiles.
@@ -167,6 +171,7 @@ int run_regress(const RegressOptions& o, std::ostream& os) {
       // VIRIM's widths are its own profile ("virim"), not the ray caster's presets.
       failed += run_case(o, base, sv, name, "virim", os).failed ? 1 : 0;
       ++cases;
+      progress.step();
       continue;
     }
     for (const std::string& profile : o.profiles) {
@@ -176,6 +181,7 @@ int run_regress(const RegressOptions& o, std::ostream& os) {
       failed += run_case(o, scene, sv, name, profile, os).failed ? 1 : 0;
       ++cases;
     }
+    progress.step();
   }
   os << cases - failed << " passed, " << failed << " failed\n";
   return failed;

@@ -1,5 +1,6 @@
 #include "cosim/sweep.hpp"
 #include "cosim/files.hpp"
+#include "cosim/progress.hpp"
 
 #include <toml++/toml.h>
 #include <unistd.h>
@@ -188,44 +189,6 @@ PointOutcome run_point(const Plan& plan, std::size_t index, int threads, Caches&
   return out;
 }
 
-// --- Progress -----------------------------------------------------------------------
-
-std::string clock_text(double s) {
-  const long t = std::lround(s);
-  std::ostringstream os;
-  os << t / 60 << ":" << std::setw(2) << std::setfill('0') << t % 60;
-  return os.str();
-}
-
-// "[#########...........] 12/40  30%  elapsed 0:12  ETA 0:28" on stderr,
-// redrawn in place on a TTY, a line per point otherwise (--progress to a log).
-class Progress {
- public:
-  Progress(std::size_t total, bool enabled)
-      : total_(total), enabled_(enabled), tty_(isatty(STDERR_FILENO) != 0), t0_(StopwatchClock::now()) {}
-  void point_done() {
-    if (!enabled_) return;
-    const std::lock_guard lock(mutex_);
-    ++done_;
-    const double elapsed = seconds_since(t0_);
-    const double eta = elapsed / static_cast<double>(done_) * static_cast<double>(total_ - done_);
-    const int width = 30;
-    const int filled = static_cast<int>(width * done_ / std::max<std::size_t>(total_, 1));
-    std::cerr << (tty_ ? "\r" : "") << "sweep ["
-              << std::string(static_cast<std::size_t>(filled), '#')
-              << std::string(static_cast<std::size_t>(width - filled), '.') << "] " << done_ << "/"
-              << total_ << " " << std::setw(3) << 100 * done_ / std::max<std::size_t>(total_, 1)
-              << "%  elapsed " << clock_text(elapsed) << "  ETA " << clock_text(eta)
-              << (tty_ && done_ < total_ ? "" : "\n") << std::flush;
-  }
-
- private:
-  std::size_t total_, done_ = 0;
-  bool enabled_, tty_;
-  StopwatchClock::time_point t0_;
-  std::mutex mutex_;
-};
-
 // --- Table --------------------------------------------------------------------------
 
 nlohmann::json sweep_meta(const Plan& plan, const Shard& shard) {
@@ -350,7 +313,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   std::vector<PointOutcome> outcomes(mine.size());
   std::vector<std::exception_ptr> failures(mine.size());
   const int threads = std::max(1, ref::worker_count(0) / o.jobs);
-  Progress progress(mine.size(), o.progress || isatty(STDERR_FILENO) != 0);
+  Progress progress("sweep", mine.size(), o.progress);
   std::atomic<std::size_t> next{0};
   const auto worker = [&] {
     for (std::size_t k = next.fetch_add(1); k < mine.size(); k = next.fetch_add(1)) {
@@ -359,7 +322,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
       } catch (...) {
         failures[k] = std::current_exception();
       }
-      progress.point_done();
+      progress.step();
     }
   };
   {

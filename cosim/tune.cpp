@@ -1,4 +1,5 @@
 #include "cosim/tune.hpp"
+#include "cosim/progress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -140,6 +141,12 @@ TuneResult run_tune(const ref::Scene& scene, const TuneOptions& o) {
   // memoised by profile (the probes below and the walk share them).
   std::map<std::tuple<int, int, int>, bittrue::VoxelMemory> memories;
   std::map<std::vector<int>, double> psnr_of;
+  // The search stops at the first point meeting the target: at most every
+  // valid point is rendered.
+  Progress progress("tune", static_cast<std::size_t>(std::count_if(
+                                r.points.begin(), r.points.end(),
+                                [](const TunePoint& t) { return t.valid; })),
+                    false, true);
   auto measure = [&](const PrecisionProfile& p) {
     std::vector<int> k;
     for (const ProfileField& f : profile_fields()) k.push_back(p.*f.member);
@@ -153,6 +160,7 @@ TuneResult run_tune(const ref::Scene& scene, const TuneOptions& o) {
     const ref::QuantImage img = bittrue::bt_render_image(setup, it->second, scene.render.threads);
     const double psnr = measure_accuracy(img, truth).psnr_db;
     ++r.rendered;
+    progress.step();
     psnr_of.emplace(k, psnr);
     return psnr;
   };
