@@ -35,22 +35,6 @@ using voxcast::ref::Overrides;
 // hazards; 7 fuzz-scenes: findings; 64 a malformed command line (EX_USAGE).
 constexpr int kUsageError = 64;
 
-// Edit distance (insertions, deletions, substitutions) between two words.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 // "unknown subcommand 'renderr'; did you mean 'render'?" when the first word
 // is no subcommand (empty when it is one, or an option).
 std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
@@ -60,7 +44,7 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
   std::size_t best = std::string::npos;
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
     if (sub->get_name() == word) return "";
-    const std::size_t d = edit_distance(word, sub->get_name());
+    const std::size_t d = voxcast::ref::edit_distance(word, sub->get_name());
     if (d < best) best = d, nearest = sub->get_name();
   }
   std::string msg = "unknown subcommand '" + word + "'";

@@ -5,6 +5,7 @@
 // values are all errors.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,10 @@ namespace voxcast::ref {
 using Overrides = std::vector<std::string>;
 
 Scene load_scene_file(const std::string& path, const Overrides& overrides = {});
+
+// Edit distance (insertions, deletions, substitutions) between two words: the
+// "did you mean" of an unknown key or subcommand.
+std::size_t edit_distance(const std::string& a, const std::string& b);
 Scene parse_scene(const std::string& toml_text, const std::string& origin,
                   const std::string& base_dir, const Overrides& overrides = {});
 
