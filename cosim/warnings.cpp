@@ -374,10 +374,7 @@ void geometry_hazards(const ref::Scene& scene, const ref::Volume& volume,
   in.volume = ref::make_render_volume(volume, none, scene.volume.crop);
   in.camera = ref::make_camera_frame(scene.camera, scene.camera.pose, scene.render.width,
                                      scene.render.height, in.volume.world_scale);
-  in.settings.mode = scene.render.mode;
-  in.settings.step = 1.0 / scene.render.oversampling;
-  in.settings.ert_threshold = scene.render.ert_threshold;
-  if (scene.render.jitter) in.settings.jitter_bits = p.t_frac_bits;
+  in.settings = ref::make_render_settings(scene);
   bittrue::FrameRegisters regs;
   try {
     regs = bittrue::make_frame_registers(p, scene, in);

@@ -64,13 +64,7 @@ double step_error_bound(const PrecisionProfile& p, const ref::CameraFrame& cam,
 
 double lever_bound(const ref::CameraFrame& cam, const ref::Box& world_box, double depth,
                    double step) {
-  double depth_far = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const ref::Vec3 corner{(c & 1) ? world_box.hi.x : world_box.lo.x,
-                           (c & 2) ? world_box.hi.y : world_box.lo.y,
-                           (c & 4) ? world_box.hi.z : world_box.lo.z};
-    depth_far = std::max(depth_far, glm::dot(cam.forward, corner - cam.eye));
-  }
+  const double depth_far = ref::box_depth_range(cam, world_box).far;
   return corner_length(cam) * std::max(0.0, depth_far - depth) / step + 1.0;
 }
 

@@ -81,13 +81,8 @@ double origin_plane_depth(const PrecisionProfile& p, const ref::CameraFrame& cam
   const double v0 = (1.0 - 1.0 / cam.height) * cam.half_height;
   const double u1 = -u0, v1 = -v0;  // the last column's and row's centres
   const bool perspective = cam.projection == ref::Projection::Perspective;
-  double d_box = std::numeric_limits<double>::infinity();
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 corner{c & 1 ? index_box.hi.x : index_box.lo.x,
-                      c & 2 ? index_box.hi.y : index_box.lo.y,
-                      c & 4 ? index_box.hi.z : index_box.lo.z};
-    d_box = std::min(d_box, glm::dot(cam.forward, corner * ws - cam.eye));
-  }
+  const double d_box =
+      ref::box_depth_range(cam, ref::Box{index_box.lo * ws, index_box.hi * ws}).near;
   double lo = 0.0, hi = std::max(0.0, d_box);
   const double limit = origin_limit(p);
   for (const double u : {u0, u1})

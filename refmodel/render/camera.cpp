@@ -1,6 +1,8 @@
 #include "refmodel/render/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -32,6 +34,17 @@ Ray primary_ray(const CameraFrame& f, int px, int py) {
   if (f.projection == Projection::Perspective)
     return Ray{f.eye, glm::normalize(f.forward + u * f.right + v * f.up)};
   return Ray{f.eye + u * f.right + v * f.up, f.forward};
+}
+
+DepthRange box_depth_range(const CameraFrame& f, const Box& b) {
+  DepthRange r{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner{c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z};
+    const double d = glm::dot(f.forward, corner - f.eye);
+    r.near = std::min(r.near, d);
+    r.far = std::max(r.far, d);
+  }
+  return r;
 }
 
 Ray origin_plane_ray(const CameraFrame& f, int px, int py, double depth) {

@@ -30,6 +30,13 @@ CameraFrame make_camera_frame(const CameraDesc& camera, const CameraPose& pose, 
 // normal to the view direction. Both travel only forward (t >= 0).
 Ray primary_ray(const CameraFrame& frame, int px, int py);
 
+// The smallest and largest depth, forward·(corner - eye), of a world-space
+// box's corners: the depth range of everything inside it.
+struct DepthRange {
+  double near = 0.0, far = 0.0;
+};
+DepthRange box_depth_range(const CameraFrame& frame, const Box& world_box);
+
 // The float twin of the geometry processor's origin plane (docs/pipeline.md §0):
 // pixel (px, py)'s primary ray with its origin moved forward to the plane normal
 // to the view direction at depth `depth` (world units) from the eye; the same

@@ -239,6 +239,16 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
 
 // --- The whole image ------------------------------------------------------------
 
+RenderSettings make_render_settings(const Scene& scene) {
+  RenderSettings s;
+  s.mode = scene.render.mode;
+  s.step = 1.0 / scene.render.oversampling;
+  s.ert_threshold = scene.render.ert_threshold;
+  if (scene.render.jitter) s.jitter_bits = scene.precision.t_frac_bits;
+  s.partial_segments = scene.render.partial_segments;
+  return s;
+}
+
 RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
                                 const GradientField& gradients, const CameraPose& pose) {
   RenderInputs in;
@@ -247,11 +257,7 @@ RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
   in.camera = make_camera_frame(scene.camera, pose, scene.render.width, scene.render.height,
                                 in.volume.world_scale);
   in.shading = make_shading_setup(scene.lights, in.camera.forward, scene.material.shininess);
-  in.settings.mode = scene.render.mode;
-  in.settings.step = 1.0 / scene.render.oversampling;
-  in.settings.ert_threshold = scene.render.ert_threshold;
-  if (scene.render.jitter) in.settings.jitter_bits = scene.precision.t_frac_bits;
-  in.settings.partial_segments = scene.render.partial_segments;
+  in.settings = make_render_settings(scene);
   if (scene.render.space_leaping && scene.render.mode != RenderMode::Mip)
     in.leap = make_leap_blocks(std::make_shared<const MinMaxBlocks>(make_min_max_blocks(
                                    volume, leap_block_log2(scene.render.leap_block))),

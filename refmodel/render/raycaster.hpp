@@ -198,6 +198,8 @@ struct RenderInputs {
   std::optional<LeapBlocks> leap;  // render.space_leaping
 };
 
+// The scene's render settings (mode, step, ERT, jitter, partial segments).
+RenderSettings make_render_settings(const Scene& scene);
 RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
                                 const GradientField& gradients, const CameraPose& pose);
 
