@@ -6,7 +6,7 @@ set -euo pipefail
 VOXCAST_PACKAGES=(
   g++ cmake ninja-build pkg-config
   libglm-dev libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev python3-imath
-  libgtest-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libpugixml-dev
   libnifti2-dev libgdcm-dev zlib1g-dev
   mricron-data gnuplot-nox
   tcl

@@ -186,7 +186,7 @@ typename GeometryParams<P>::y_t rsqrt_newton(
 // processor, in the other units' headers for theirs; docs/pipeline.md,
 // "Pipeline depths", lists them). The kernel's LATENCY pragma, the cycle model's
 // UnitLatencies (rtl_model/pipeline/config.hpp) and the resource report
-// (cosim/report.cpp) read the constant; tests/report/test_unit_depths.cpp checks
+// (cosim/hardware/report.cpp) read the constant; tests/report/test_unit_depths.cpp checks
 // that the three agree. The pragmas name plain namespace-scope constants:
 // UG1399 ("Using Constants with Pragmas") allows a const int or constexpr
 // variable as a pragma's value, and says nothing of qualified or

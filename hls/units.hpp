@@ -6,7 +6,7 @@
 // members of its frame state nor instantiated in its ray loop (tag dispatch in
 // hls/vizard2_top.hpp), so a vendor tool never sees them. `voxcast
 // synth-script` writes the set derived from a scene into elaborated_config.hpp
-// (cosim/synth_script.hpp, docs/synthesis.md).
+// (cosim/hardware/synth_script.hpp, docs/synthesis.md).
 //
 // AllUnits is the run-time-configurable design the hls engine and the rtl
 // model run: every unit present, the camera and the render mode chosen by

@@ -16,7 +16,7 @@
 //      buffer; tools/synth_lint --region checks that on the compiler's AST.
 //
 // `voxcast synth-script SCENE` writes the scene's elaborated_config.hpp
-// (ref::elaborate: which units the scene needs; cosim/synth_script.hpp) and
+// (ref::elaborate: which units the scene needs; cosim/hardware/synth_script.hpp) and
 // its Tcl passes it with `-include`, so the top instantiates only those units
 // (hls/units.hpp, docs/synthesis.md): a MIP top has no classification, shader
 // or compositor, a parallel top no direction or rsqrt unit. Without the header

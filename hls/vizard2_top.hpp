@@ -103,7 +103,7 @@ bool frame_is_shaded(FrameMode mode) {
 }
 
 // Tracing hook: the default does nothing and compiles away. The cosim harness
-// passes a tracer that records every unit's output (cosim/hls_engine.cpp).
+// passes a tracer that records every unit's output (cosim/engines/hls_engine.cpp).
 // ray: the ray's set-up; sample: each sample's unit outputs; skip: a leap's
 // sample count; ert(k): early ray termination after sample k (of 0 .. n-1).
 struct NullTracer {

@@ -1,6 +1,6 @@
 // The widths of the VIZARD II datapath as functions of the precision profile:
 // the one place they are derived. Every unit's Params struct (hls/*.hpp) builds
-// its types from these functions, and the resource report (cosim/report.cpp)
+// its types from these functions, and the resource report (cosim/hardware/report.cpp)
 // sizes its operators with the same calls, so the design and its estimate
 // cannot disagree about a width (tests/report/test_report.cpp checks every
 // operator width of the report against the kernels' types).

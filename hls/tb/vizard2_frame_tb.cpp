@@ -36,7 +36,7 @@ using voxcast::hls::top::Word;
 
 namespace {
 
-// The data file: little-endian 64-bit words (cosim/synth_script.cpp writes it).
+// The data file: little-endian 64-bit words (cosim/hardware/synth_script.cpp writes it).
 class Reader {
  public:
   explicit Reader(const std::string& path) : path_(path) {

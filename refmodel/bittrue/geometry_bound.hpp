@@ -1,7 +1,7 @@
 // The geometry processor's error bounds (docs/pipeline.md §0-1): how far the
 // fixed-point rays of a frame can lie from the float reference's, derived from
 // the widths alone. The extremes suite asserts them pixel by pixel
-// (tests/extremes/); the precision guard (cosim/warnings.cpp) predicts a
+// (tests/extremes/); the precision guard (cosim/engines/warnings.cpp) predicts a
 // scene's worst case from them before anything renders.
 #pragma once
 

@@ -265,7 +265,8 @@ RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
   return in;
 }
 
-Image render_image(const RenderInputs& in, int threads, FrameStats* stats) {
+Image render_image(const RenderInputs& in, int threads, FrameStats* stats,
+                   const std::function<void()>& row_done) {
   Image img(in.camera.width, in.camera.height);
   std::vector<FrameStats> rows(static_cast<std::size_t>(img.height));
   parallel_for(
@@ -279,6 +280,7 @@ Image render_image(const RenderInputs& in, int threads, FrameStats* stats) {
                                   in.leap ? &*in.leap : nullptr, pixel_jitter(in.settings, x, y));
           fs.add(rs);
         }
+        if (row_done) row_done();
       },
       threads);
   if (stats) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -204,7 +205,10 @@ RenderInputs make_render_inputs(const Scene& scene, const Volume& volume,
                                 const GradientField& gradients, const CameraPose& pose);
 
 // Renders every pixel, rows spread over `threads` workers (0 = all cores); the
-// result is bit-identical for any thread count.
-Image render_image(const RenderInputs& in, int threads = 0, FrameStats* stats = nullptr);
+// result is bit-identical for any thread count. `row_done`, when given, is
+// called once per finished row from the worker that rendered it (a progress
+// line counts them; it must be thread-safe).
+Image render_image(const RenderInputs& in, int threads = 0, FrameStats* stats = nullptr,
+                   const std::function<void()>& row_done = {});
 
 }  // namespace voxcast::ref

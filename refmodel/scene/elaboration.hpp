@@ -6,7 +6,7 @@
 // termination comparator; a shaded or unshaded scene no MIP unit. The voxel
 // fields follow the data's real range and the classification table the
 // transfer function. docs/resources.md lists the rules; the resource report
-// (cosim/report.hpp) and the cycle model's latencies
+// (cosim/hardware/report.hpp) and the cycle model's latencies
 // (rtl::pipeline::elaborate_latencies) read this struct.
 //
 // The struct is plain data: it depends on the profile only, so the rtl model

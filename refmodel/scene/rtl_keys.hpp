@@ -1,6 +1,6 @@
 // The keys of the scene's [rtl] table (docs/scenes.md) in one list: the
 // schema's accepted names (scene_toml.cpp), the scene writer's [rtl] section
-// (scene_to_toml) and the reports' "rtl" object (cosim/rtl_json.hpp) all
+// (scene_to_toml) and the reports' "rtl" object (cosim/reports/rtl_json.hpp) all
 // visit this list, so a key added to RtlDesc is added here once.
 #pragma once
 

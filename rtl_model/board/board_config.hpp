@@ -1,6 +1,6 @@
 // The cycle model configured from a board description: the one place where
 // the board's clocks and SDRAM datasheet timing enter the model, so the model,
-// the generated constraints (cosim/constraints.hpp) and the board cannot
+// the generated constraints (cosim/hardware/constraints.hpp) and the board cannot
 // disagree (tests/board/ checks all three).
 #pragma once
 

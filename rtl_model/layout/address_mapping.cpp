@@ -45,7 +45,7 @@ void check_fits(std::string_view mapping, std::uint64_t index_space, const sdram
   const std::uint64_t capacity = std::uint64_t{g.banks} * g.rows * g.columns;
   if (index_space > capacity) {
     os << index_space << " words do not fit the DIMM's " << capacity << " (" << g.module << ")";
-    throw Error(os.str());
+    throw CapacityError(os.str());
   }
 }
 

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "refmodel/error.hpp"
 #include "rtl_model/sdram/command.hpp"
 #include "rtl_model/sdram/geometry.hpp"
 
@@ -51,8 +52,16 @@ std::ostream& operator<<(std::ostream& os, const WordGrid& g);
 // of two (checked by check_fits).
 sdram::Address split_row_bank_column(std::uint64_t index, const sdram::Geometry& g);
 
-// Throws voxcast::Error naming the mapping when `index_space` words do not fit
-// the DIMM, or when its banks or columns are not powers of two.
+// A volume larger than the card's memory: not a fault of the scene or the
+// model, so `voxcast cosim` runs the engines that have no such limit and names
+// the cycle model as not run (its own exit status) instead of failing.
+class CapacityError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Throws CapacityError naming the mapping when `index_space` words do not fit
+// the DIMM, and voxcast::Error when its banks or columns are not powers of two.
 void check_fits(std::string_view mapping, std::uint64_t index_space, const sdram::Geometry& g);
 
 // Contract (an address mapping):

@@ -9,7 +9,7 @@
 #include <tuple>
 
 #include "board_text.hpp"
-#include "cosim/constraints.hpp"
+#include "cosim/hardware/constraints.hpp"
 #include "refmodel/error.hpp"
 #include "rtl_model/board/board_config.hpp"
 #include "rtl_model/sdram/timing.hpp"

@@ -15,8 +15,8 @@
 #include <sstream>
 #include <vector>
 
-#include "cosim/engines.hpp"
-#include "cosim/synth_script.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/hardware/synth_script.hpp"
 #include "hls/host_frame.hpp"
 #include "hls/units.hpp"
 #include "refmodel/bittrue/frame_setup.hpp"

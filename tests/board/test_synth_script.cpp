@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "cosim/synth_script.hpp"
+#include "cosim/hardware/synth_script.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 #include "rtl_model/board/board.hpp"

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "cosim/image_io.hpp"
+#include "cosim/reports/image_io.hpp"
 #include "tests/common/voxcast_cli.hpp"
 
 namespace VOXCAST_UNITY_ID {

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "cosim/cosim.hpp"
-#include "cosim/engines.hpp"
-#include "cosim/rtl_json.hpp"
+#include "cosim/engines/cosim.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/reports/rtl_json.hpp"
 #include "refmodel/scene/rtl_keys.hpp"
 #include "refmodel/precision/presets.hpp"
 #include "refmodel/scene/scene_toml.hpp"

@@ -11,9 +11,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "cosim/engines.hpp"
-#include "cosim/flythrough.hpp"
-#include "cosim/image_io.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/explore/flythrough.hpp"
+#include "cosim/reports/image_io.hpp"
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/render/raycaster.hpp"

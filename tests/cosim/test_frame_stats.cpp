@@ -15,7 +15,7 @@
 #include <fstream>
 #include <string>
 
-#include "cosim/engines.hpp"
+#include "cosim/engines/engines.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/render/raycaster.hpp"
 #include "refmodel/scene/scene_toml.hpp"

@@ -1,4 +1,4 @@
-// The scene-level differential fuzzer (cosim/scene_fuzz.hpp): a bounded,
+// The scene-level differential fuzzer (cosim/verify/scene_fuzz.hpp): a bounded,
 // fixed-seed run finds nothing; the scenes an earlier run found (the guard
 // then missed the reflectance map's saturation for dim colours) are now
 // predicted; and the judge does flag a scene whose error the guard does not
@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <set>
 
-#include "cosim/scene_fuzz.hpp"
-#include "cosim/warnings.hpp"
+#include "cosim/verify/scene_fuzz.hpp"
+#include "cosim/engines/warnings.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 
 namespace voxcast::test {

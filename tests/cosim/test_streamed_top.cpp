@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "cosim/engines.hpp"
+#include "cosim/engines/engines.hpp"
 #include "hls/host_frame.hpp"
 #include "hls/vizard2_dataflow.hpp"
 #include "refmodel/bittrue/frame_setup.hpp"

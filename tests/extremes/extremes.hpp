@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "cosim/engines.hpp"
+#include "cosim/engines/engines.hpp"
 #include "refmodel/bittrue/geometry_bound.hpp"
 #include "refmodel/bittrue/quantize.hpp"
 #include "refmodel/bittrue/raycaster.hpp"

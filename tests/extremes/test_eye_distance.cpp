@@ -24,8 +24,8 @@
 #include <numbers>
 #include <string>
 
-#include "cosim/engines.hpp"
-#include "cosim/metrics.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/reports/metrics.hpp"
 #include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/bittrue/geometry_bound.hpp"
 #include "refmodel/render/camera.hpp"

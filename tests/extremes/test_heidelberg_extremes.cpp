@@ -18,7 +18,7 @@
 #include <random>
 #include <vector>
 
-#include "cosim/heidelberg.hpp"
+#include "cosim/engines/heidelberg.hpp"
 #include "refmodel/bittrue/heidelberg.hpp"
 #include "refmodel/bittrue/quantize.hpp"
 #include "refmodel/render/heidelberg/heidelberg.hpp"

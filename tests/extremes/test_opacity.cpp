@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "cosim/warnings.hpp"
+#include "cosim/engines/warnings.hpp"
 #include "extremes.hpp"
 
 namespace voxcast::test {

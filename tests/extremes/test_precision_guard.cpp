@@ -1,4 +1,4 @@
-// The precision guard (cosim/warnings.hpp, issue 18): each case a new user
+// The precision guard (cosim/engines/warnings.hpp, issue 18): each case a new user
 // could write and that the fixed-point engines render far from the float
 // reference is predicted at load time, warned naming its key, refused under
 // --strict, and the error the engines then make is within the guard's
@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cosim/warnings.hpp"
+#include "cosim/engines/warnings.hpp"
 #include "extremes.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "cosim/warnings.hpp"
+#include "cosim/engines/warnings.hpp"
 #include "extremes.hpp"
 
 namespace voxcast::test {

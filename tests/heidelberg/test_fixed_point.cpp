@@ -7,10 +7,10 @@
 #include <cmath>
 #include <random>
 
-#include "cosim/engines.hpp"
-#include "cosim/heidelberg.hpp"
-#include "cosim/metrics.hpp"
-#include "cosim/regress.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/engines/heidelberg.hpp"
+#include "cosim/reports/metrics.hpp"
+#include "cosim/verify/regress.hpp"
 #include "hls/virim/host.hpp"
 #include "refmodel/bittrue/heidelberg.hpp"
 #include "refmodel/render/heidelberg/heidelberg.hpp"

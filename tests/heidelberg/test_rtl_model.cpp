@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "cosim/engines.hpp"
-#include "cosim/heidelberg.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/engines/heidelberg.hpp"
 #include "refmodel/bittrue/heidelberg.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"

@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cosim/bench.hpp"
-#include "cosim/commands.hpp"
-#include "cosim/cosim.hpp"
+#include "cosim/explore/bench.hpp"
+#include "cosim/engines/render.hpp"
+#include "cosim/engines/cosim.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "cosim/engines.hpp"
+#include "cosim/engines/engines.hpp"
 #include "hls/host_frame.hpp"
 #include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/bittrue/raycaster.hpp"

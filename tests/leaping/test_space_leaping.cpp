@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "cosim/engines.hpp"
-#include "cosim/report.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/hardware/report.hpp"
 #include "hls/host_frame.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/error.hpp"

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "cosim/engines.hpp"
+#include "cosim/engines/engines.hpp"
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/render/raycaster.hpp"
 #include "refmodel/scene/scene_toml.hpp"

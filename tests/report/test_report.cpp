@@ -11,7 +11,7 @@
 #include <set>
 #include <string>
 
-#include "cosim/report.hpp"
+#include "cosim/hardware/report.hpp"
 #include "hls/classification_table.hpp"
 #include "hls/compositor.hpp"
 #include "hls/geometry_processor.hpp"

@@ -2,7 +2,7 @@
 // every point is rendered with the bit-true engine and the answer is checked
 // exhaustively — it meets the target and no cheaper point of the space does —
 // with and without the monotonicity pruning. PSNRs are against the truth (the
-// float reference at 16x, cosim/truth.hpp), recomputed here independently.
+// float reference at 16x, cosim/engines/truth.hpp), recomputed here independently.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,10 +10,10 @@
 #include <iostream>
 #include <vector>
 
-#include "cosim/engines.hpp"
-#include "cosim/metrics.hpp"
-#include "cosim/truth.hpp"
-#include "cosim/tune.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/reports/metrics.hpp"
+#include "cosim/engines/truth.hpp"
+#include "cosim/explore/tune.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/render/raycaster.hpp"

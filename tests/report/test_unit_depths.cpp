@@ -17,7 +17,7 @@
 #include <string>
 #include <tuple>
 
-#include "cosim/report.hpp"
+#include "cosim/hardware/report.hpp"
 #include "hls/classification_table.hpp"
 #include "hls/compositor.hpp"
 #include "hls/geometry_processor.hpp"

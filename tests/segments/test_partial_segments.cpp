@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "cosim/engines.hpp"
-#include "cosim/report.hpp"
-#include "cosim/synth_script.hpp"
+#include "cosim/engines/engines.hpp"
+#include "cosim/hardware/report.hpp"
+#include "cosim/hardware/synth_script.hpp"
 #include "hls/units.hpp"
 #include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/bittrue/quantize.hpp"

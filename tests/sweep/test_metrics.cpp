@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "cosim/metrics.hpp"
+#include "cosim/reports/metrics.hpp"
 
 namespace VOXCAST_UNITY_ID {
 

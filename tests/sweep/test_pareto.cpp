@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "cosim/sweep_table.hpp"
+#include "cosim/explore/sweep_table.hpp"
 #include "refmodel/error.hpp"
 
 namespace VOXCAST_UNITY_ID {

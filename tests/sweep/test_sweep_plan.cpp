@@ -3,7 +3,7 @@
 
 #include <set>
 
-#include "cosim/sweep_plan.hpp"
+#include "cosim/explore/sweep_plan.hpp"
 #include "refmodel/error.hpp"
 
 namespace VOXCAST_UNITY_ID {

@@ -2,7 +2,7 @@
 // it does not.
 #include <gtest/gtest.h>
 
-#include "cosim/truth.hpp"
+#include "cosim/engines/truth.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 

@@ -1,0 +1,401 @@
+#include "cosim/explore/sweep.hpp"
+#include "cosim/reports/files.hpp"
+#include "cosim/reports/progress.hpp"
+
+#include <toml++/toml.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "cosim/reports/metrics.hpp"
+#include "cosim/hardware/report.hpp"
+#include "cosim/explore/sweep_plot.hpp"
+#include "cosim/engines/truth.hpp"
+#include "cosim/reports/stopwatch.hpp"
+#include "cosim/engines/warnings.hpp"
+#include "refmodel/error.hpp"
+#include "refmodel/parallel.hpp"
+#include "refmodel/precision/presets.hpp"
+#include "refmodel/scene/scene_toml.hpp"
+#include "rtl_model/engine.hpp"
+#include "rtl_model/scene_config.hpp"
+#include "refmodel/scene/elaboration.hpp"
+
+namespace voxcast::cosim::sweep {
+namespace {
+
+using Kind = Column::Kind;
+
+// --- Column groups ---------------------------------------------------------------
+
+std::vector<Cell> measure_accuracy_cells(const PointContext& p) {
+  const Accuracy a = measure_accuracy(p.design, p.truth);
+  return {Cell::txt(p.design_is_hls ? "hls" : "bittrue"),
+          Cell::num(a.psnr_db),
+          Cell::num(a.max_abs_err_lsb),
+          Cell::num(a.mean_abs_err_lsb),
+          Cell::num(a.rms_err_lsb),
+          Cell::num(a.pct_within_1lsb),
+          std::isnan(a.ssim) ? Cell::na("SSIM needs an image of at least 11x11 pixels")
+                             : Cell::num(a.ssim)};
+}
+
+// The precision guard's verdict on the point (cosim/engines/warnings.hpp): a point
+// whose error is hazard-limited says so next to its accuracy.
+std::vector<Cell> measure_hazard_cells(const PointContext& p) {
+  const std::vector<Hazard> hazards = precision_hazards(p.scene, p.volume.volume);
+  return {Cell::num(static_cast<double>(hazards.size())), Cell::num(largest_worst_lsb(hazards)),
+          Cell::txt(hazard_keys(hazards))};
+}
+
+std::vector<Cell> measure_rtl_cells(const PointContext& p) {
+  if (!rtl::rtl_supports(p.scene.precision)) {
+    const Cell na =
+        Cell::na("rtl runs only the compiled presets (" + rtl::rtl_supported_profiles() +
+                 "); this profile is " + p.scene.precision_name);
+    return {na, na, na};
+  }
+  try {
+    const rtl::RtlResult r = rtl::rtl_render(p.setup, p.memory, rtl::rtl_config(p.scene.rtl));
+    if (p.design_is_hls && r.image.pixels != p.design.pixels)
+      throw Error("the rtl image differs from hls (run voxcast cosim on this point)");
+    return {Cell::num(r.stats.fps()), Cell::num(r.stats.ns_per_sample()),
+            Cell::num(static_cast<double>(r.stats.cycles))};
+  } catch (const Error& e) {
+    const Cell na = Cell::na(std::string("rtl: ") + e.what());
+    return {na, na, na};
+  }
+}
+
+// The resource model of `voxcast report` (docs/resources.md) for the point's
+// elaborated design, on the sweep's part (--part, checked by run_sweep).
+std::vector<Cell> measure_resource_cells(const PointContext& p) {
+  const Part& part = find_part(p.part);
+  const ResourceReport r = estimate_resources(
+      ref::elaborate(p.scene, p.volume.volume, p.volume.gradients), part);
+  return {Cell::txt(part.name), Cell::num(r.total.luts), Cell::num(r.total.ffs), Cell::num(r.total.dsps),
+          Cell::num(r.total.brams), Cell::num(100.0 * cost(r.total, part))};
+}
+
+// --- Shared inputs -----------------------------------------------------------------
+
+// Values computed once per key by the first caller; others wait for it.
+template <typename V>
+class OnceCache {
+ public:
+  template <typename Make>
+  std::shared_ptr<const V> get(const std::string& key, Make&& make) {
+    std::promise<std::shared_ptr<const V>> promise;
+    std::shared_future<std::shared_ptr<const V>> future;
+    bool mine = false;
+    {
+      const std::lock_guard lock(mutex_);
+      auto it = values_.find(key);
+      mine = it == values_.end();
+      if (mine) it = values_.emplace(key, promise.get_future().share()).first;
+      future = it->second;
+    }
+    if (mine) {
+      try {
+        promise.set_value(std::make_shared<const V>(make()));
+      } catch (...) {
+        promise.set_exception(std::current_exception());
+      }
+    }
+    return future.get();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::shared_future<std::shared_ptr<const V>>> values_;
+};
+
+// The [volume] table of the scene: what the loaded volume and its gradients depend on.
+std::string volume_key(const ref::Scene& scene) {
+  const toml::table root = toml::parse(ref::scene_to_toml(scene));
+  std::ostringstream os;
+  if (const toml::table* v = root["volume"].as_table()) os << *v;
+  return os.str();
+}
+
+struct Caches {
+  OnceCache<SceneVolume> volumes;
+  TruthCache truths;
+};
+
+// --- One point ----------------------------------------------------------------------
+
+struct PointOutcome {
+  Row row;
+  double seconds = 0.0;
+};
+
+std::size_t measured_columns() {
+  std::size_t n = 0;
+  for (const ColumnGroup& g : column_groups()) n += g.columns.size();
+  return n;
+}
+
+PointOutcome run_point(const Plan& plan, std::size_t index, int threads, Caches& caches) {
+  const auto t0 = StopwatchClock::now();
+  PointOutcome out;
+  out.row.index = index;
+  for (const std::string& v : plan.values(index)) out.row.cells.push_back(Cell::txt(v));
+  ref::Scene scene = plan.scene(index);
+  scene.render.threads = threads;  // results do not depend on it (parallel.hpp)
+  try {
+    const std::shared_ptr<const SceneVolume> sv =
+        caches.volumes.get(volume_key(scene), [&] { return load_scene_volume(scene); });
+    check_fixed_point(scene, *sv, false);
+    const std::shared_ptr<const ref::Image> truth = caches.truths.get(scene, *sv, plan.truth);
+    const ref::CameraPose pose = ref::frame_poses(scene.camera, 1).front();
+    const ref::RenderInputs in = ref::make_render_inputs(scene, sv->volume, sv->gradients, pose);
+    const bittrue::FrameSetup setup = bittrue::make_frame_setup(scene.precision, scene, in);
+    const bittrue::VoxelMemory memory =
+        bittrue::make_voxel_memory(scene.precision, sv->volume, sv->gradients);
+    const bool hls = hls_supports(scene.precision);
+    const ref::QuantImage design = hls ? hls_render_image(setup, memory, threads)
+                                       : bittrue::bt_render_image(setup, memory, threads);
+    const PointContext ctx{scene, *sv, setup, memory, design, hls, *truth, plan.part};
+    out.row.cells.push_back(Cell::txt("ok"));
+    for (const ColumnGroup& g : column_groups()) {
+      std::vector<Cell> cells = g.measure(ctx);
+      if (cells.size() != g.columns.size())
+        throw std::logic_error("column group " + g.name + " returned the wrong number of cells");
+      for (Cell& c : cells) out.row.cells.push_back(std::move(c));
+    }
+  } catch (const Error& e) {
+    // The point cannot run (a width that cannot hold the volume, ...): its row
+    // says why; the rest of the sweep goes on.
+    out.row.cells.resize(plan.axes.size());
+    out.row.cells.push_back(Cell::txt(std::string("infeasible: ") + e.what()));
+    for (std::size_t i = 0; i < measured_columns(); ++i)
+      out.row.cells.push_back(Cell::na(std::string("infeasible: ") + e.what()));
+  }
+  out.seconds = seconds_since(t0);
+  return out;
+}
+
+// --- Table --------------------------------------------------------------------------
+
+nlohmann::json sweep_meta(const Plan& plan, const Shard& shard) {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const Axis& a : plan.axes) axes.push_back({{"key", a.key}, {"values", a.values}});
+  nlohmann::json m = {
+      {"scene", plan.scene_path},
+      {"sets", plan.sets},
+      {"axes", axes},
+      {"points_total", plan.size()},
+      {"truth",
+       {{"reference", "float"},
+        {"oversampling", plan.truth.oversampling},
+        {"ert_threshold", kTruthErtThreshold}}},
+      {"part", plan.part},
+      {"rtl_config", "VIZARD II baseline: in-order open page, linear layout, scan-line order"}};
+  if (shard.count > 1) m["shard"] = std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  return m;
+}
+
+std::vector<Column> table_columns(const Plan& plan) {
+  std::vector<Column> cols;
+  for (const Axis& a : plan.axes) cols.push_back({a.key, Kind::Text, "", "the varied scene key"});
+  cols.push_back({"status", Kind::Text, "", "ok, or infeasible: the reason the point cannot run"});
+  for (const ColumnGroup& g : column_groups())
+    for (const Column& c : g.columns) cols.push_back(c);
+  return cols;
+}
+
+void mark_fronts(Table& t, bool complete) {
+  for (const Front& f : pareto_fronts()) {
+    if (complete) {
+      mark_front(t, f);
+      continue;
+    }
+    t.columns.push_back(f.column);
+    for (Row& r : t.rows) r.cells.push_back(Cell::na("a shard: sweep-merge marks the front"));
+  }
+}
+
+void write_run_json(const std::string& path, const SweepOptions& o, const SweepSummary& s,
+                    const std::vector<PointOutcome>& outcomes) {
+  nlohmann::json j = {
+      {"jobs", o.jobs},
+      {"shard", std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count)},
+      {"seconds", s.seconds},
+      {"truth_renders", s.truth_renders},
+      {"point_seconds", nlohmann::json::object()}};
+  for (const PointOutcome& p : outcomes)
+    j["point_seconds"][std::to_string(p.row.index)] = p.seconds;
+  write_json_file(path, j);
+}
+
+}  // namespace
+
+const std::vector<ColumnGroup>& column_groups() {
+  static const std::vector<ColumnGroup> groups = {
+      {"accuracy",
+       {{"engine", Kind::Text, "",
+         "engine of the accuracy figures: hls, or bittrue (bit-exact "
+         "with hls) for a profile hls is not compiled for"},
+        {"psnr_db", Kind::Number, "dB", "PSNR against the truth (peak 2^out_bits - 1)"},
+        {"max_err_lsb", Kind::Number, "LSB", "largest channel error against the truth"},
+        {"mean_err_lsb", Kind::Number, "LSB", "mean channel error against the truth"},
+        {"rms_err_lsb", Kind::Number, "LSB", "rms channel error against the truth"},
+        {"pct_within_1lsb", Kind::Number, "%", "pixels whose three channels are within 1 LSB"},
+        {"ssim", Kind::Number, "", "mean SSIM of the colour channels against the truth"}},
+       measure_accuracy_cells},
+      {"hazards",
+       {{"hazards", Kind::Number, "", "precision hazards the guard predicts (cosim/engines/warnings.hpp)"},
+        {"hazard_worst_lsb", Kind::Number, "LSB",
+         "the largest predicted worst-case error of a hazard (0: none)"},
+        {"hazard_keys", Kind::Text, "", "the scene keys of the hazards, space-separated"}},
+       measure_hazard_cells},
+      {"rtl",
+       {{"rtl_fps", Kind::Number, "frames/s", "the cycle model's frames per second at 100 MHz"},
+        {"rtl_ns_per_sample", Kind::Number, "ns", "the cycle model's ns per composited sample"},
+        {"rtl_cycles", Kind::Number, "cycles", "the cycle model's cycles for the frame"}},
+       measure_rtl_cells},
+      {"resources",
+       {{"part", Kind::Text, "", "the part of the resource columns (--part)"},
+        {"luts", Kind::Number, "LUT", "estimated LUTs (resource model, docs/resources.md)"},
+        {"ffs", Kind::Number, "FF", "estimated flip-flops"},
+        {"dsps", Kind::Number, "DSP48E1", "DSP slices"},
+        {"brams", Kind::Number, "RAMB18", "block RAMs"},
+        {"part_pct", Kind::Number, "%",
+         "the part's share used: voxcast report's cost, the sum of the four resources' shares"}},
+       measure_resource_cells},
+  };
+  return groups;
+}
+
+const std::vector<Front>& pareto_fronts() {
+  static const std::vector<Front> fronts = {
+      {{"pareto_psnr_fps", Kind::Text, "",
+        "on the Pareto front of PSNR against the truth (max) and rtl frames/s (max)"},
+       {{"psnr_db", true}, {"rtl_fps", true}}},
+      {{"pareto_psnr_resources", Kind::Text, "",
+        "on the Pareto front of PSNR against the truth (max) and the part share (min)"},
+       {{"psnr_db", true}, {"part_pct", false}}},
+  };
+  return fronts;
+}
+
+SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
+  if (o.jobs < 1 || o.jobs > 256) throw Error("sweep: --jobs must be in [1, 256]");
+  if (o.out_dir.empty()) throw Error("sweep: --out DIR is required");
+  try {
+    find_part(plan.part);
+  } catch (const Error& e) {
+    throw Error(std::string("sweep: --part: ") + e.what());
+  }
+  make_output_dir(o.out_dir);
+  const auto t0 = StopwatchClock::now();
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < plan.size(); ++i)
+    if (o.shard.owns(i)) mine.push_back(i);
+
+  // Points in parallel; each writes only its own slot, so the table's order
+  // and contents do not depend on --jobs.
+  Caches caches;
+  std::vector<PointOutcome> outcomes(mine.size());
+  std::vector<std::exception_ptr> failures(mine.size());
+  const int threads = std::max(1, ref::worker_count(0) / o.jobs);
+  Progress progress("sweep", mine.size(), o.progress);
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t k = next.fetch_add(1); k < mine.size(); k = next.fetch_add(1)) {
+      try {
+        outcomes[k] = run_point(plan, mine[k], threads, caches);
+      } catch (...) {
+        failures[k] = std::current_exception();
+      }
+      progress.step();
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(mine.size())); ++j)
+      pool.emplace_back(worker);
+    worker();
+  }
+  for (const std::exception_ptr& f : failures)
+    if (f) std::rethrow_exception(f);
+
+  Table table;
+  table.meta = sweep_meta(plan, o.shard);
+  table.columns = table_columns(plan);
+  for (PointOutcome& p : outcomes) table.rows.push_back(p.row);
+  mark_fronts(table, o.shard.count == 1);
+
+  SweepSummary s;
+  s.points = mine.size();
+  s.points_total = plan.size();
+  s.truth_renders = caches.truths.renders();
+  s.written = write_outputs(table, o.out_dir, o.plots && o.shard.count == 1, s.warnings);
+  s.seconds = seconds_since(t0);
+  const std::string run = (std::filesystem::path(o.out_dir) / "run.json").string();
+  write_run_json(run, o, s, outcomes);
+  s.written.push_back(run);
+  return s;
+}
+
+SweepSummary run_sweep_merge(const std::vector<std::string>& dirs, const std::string& out_dir,
+                             bool plots) {
+  if (dirs.empty()) throw Error("sweep-merge: give the output folders of the shards");
+  const auto t0 = StopwatchClock::now();
+  std::vector<Table> shards;
+  std::vector<std::string> origins;
+  for (const std::string& d : dirs) {
+    origins.push_back((std::filesystem::path(d) / "results.json").string());
+    shards.push_back(read_json(origins.back()));
+  }
+  Table t = merge_tables(shards, origins);
+  for (const Front& f : pareto_fronts()) mark_front(t, f);
+  make_output_dir(out_dir);
+  SweepSummary s;
+  s.merged = true;
+  s.points = t.rows.size();
+  s.points_total = t.rows.size();
+  s.written = write_outputs(t, out_dir, plots, s.warnings);
+  s.seconds = seconds_since(t0);
+  return s;
+}
+
+std::vector<std::string> write_outputs(const Table& table, const std::string& dir, bool plots,
+                                       std::vector<std::string>& warnings) {
+  const auto path = [&](const char* f) { return (std::filesystem::path(dir) / f).string(); };
+  std::vector<std::string> written = {path("results.csv"), path("results.json")};
+  write_csv(table, written[0]);
+  write_json(table, written[1]);
+  if (plots) {
+    const std::vector<std::string> p = write_plots(table, dir, warnings);
+    written.insert(written.end(), p.begin(), p.end());
+  }
+  return written;
+}
+
+void print_sweep_summary(std::ostream& os, const SweepSummary& s) {
+  os << std::fixed << std::setprecision(1);
+  if (s.merged)
+    os << "merged   " << s.points << " points in " << s.seconds << " s\n";
+  else
+    os << "points   " << s.points << " of " << s.points_total << " in " << s.seconds << " s ("
+       << s.truth_renders << " truth image" << (s.truth_renders == 1 ? "" : "s") << " rendered)\n";
+  for (const std::string& w : s.warnings) std::cerr << "voxcast: warning: " << w << "\n";
+  for (const std::string& w : s.written) os << "wrote    " << w << "\n";
+}
+
+}  // namespace voxcast::cosim::sweep

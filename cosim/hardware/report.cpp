@@ -1,0 +1,731 @@
+#include "cosim/hardware/report.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/engines/engines.hpp"
+#include "hls/compositor.hpp"
+#include "hls/segment_opacity.hpp"
+#include "hls/widths.hpp"
+#include "refmodel/error.hpp"
+
+namespace voxcast::cosim {
+
+namespace {
+
+int bits_for(long long n) {  // unsigned bits holding 0..n (at least 1)
+  return hls::widths::bits_for(n);
+}
+int ceil_div(long long a, long long b) { return static_cast<int>((a + b - 1) / b); }
+
+Op mul(std::string what, int count, int a, bool as, int b, bool bs) {
+  return {OpKind::Mul, std::move(what), count, a, b, as, bs};
+}
+Op add(std::string what, int count, int w) { return {OpKind::Add, std::move(what), count, w, 0}; }
+Op cmp(std::string what, int count, int w) { return {OpKind::Cmp, std::move(what), count, w, 0}; }
+Op mux(std::string what, int count, int w, int inputs) {
+  return {OpKind::Mux, std::move(what), count, w, inputs};
+}
+Op div(std::string what, int count, int q, int d) {
+  return {OpKind::Div, std::move(what), count, q, d};
+}
+Op reg(std::string what, int bits) { return {OpKind::Reg, std::move(what), 1, bits, 0}; }
+Op mem(OpKind k, std::string what, int count, int depth, int width) {
+  return {k, std::move(what), count, depth, width};
+}
+
+// The operators below are sized by the hls Params structs' own width functions
+// (hls/widths.hpp), called on the scene's profile: `f` is the profile as the
+// kernels' widths see it. tests/report/test_report.cpp checks every width of
+// every operator against the kernels' types.
+using hls::ProfileFields;
+namespace wd = hls::widths;
+
+// One lerp v0 + (v1 - v0)·f on operands of `bits` (signed difference) and a
+// weight of wb + 1 unsigned bits: subtract, multiply, add.
+void lerp(std::vector<Op>& ops, const std::string& what, int count, int bits, int wb,
+          bool is_signed) {
+  ops.push_back(add(what + ": v1 - v0", count, bits + 1));
+  ops.push_back(mul(what + ": (v1 - v0)·f", count, bits + 1, true, wb + 1, false));
+  ops.push_back(add(what + ": v0 + ·", count, bits + wb + (is_signed ? 1 : 0)));
+}
+
+UnitOps geometry_rsqrt(const ProfileFields& f) {
+  UnitOps u{"ray_direction+rsqrt", "§1.1-1.2", {}, 0, 1};
+  auto& o = u.ops;
+  const int dir = wd::dir_bits(f);
+  o.push_back(mul("px·B, py·C", 6, wd::pixel_bits, false, dir, true));
+  o.push_back(add("d = A + px·B + py·C", 6, dir + wd::pixel_bits + 2));
+  o.push_back(mul("n2 = d·d", 3, dir, true, dir, true));
+  o.push_back(add("n2 sum", 2, 2 * dir));
+  o.push_back(mux("leading-zero count of n2", 1, bits_for(wd::n2_bits(f)), wd::n2_bits(f)));
+  o.push_back(mux("d' = d·2^e (shifter)", 3, wd::dnorm_bits(f), f.dir_frac_bits + 1));
+  o.push_back(mux("n2·4^e (shifter)", 1, wd::n2_norm_bits(f), f.dir_frac_bits + 1));
+  o.push_back(mem(OpKind::Rom, "rsqrt seed ROM", 1, wd::rsqrt_seed_entries(f), wd::y_bits(f)));
+  o.push_back(mul("Newton: y·y", 2, wd::y_bits(f), false, wd::y_bits(f), false));
+  o.push_back(mul("Newton: m·t", 2, wd::m_bits(f), false, wd::sq_bits(f), false));
+  o.push_back(add("Newton: 3 - t", 2, wd::sq_bits(f) + 1));
+  o.push_back(mul("Newton: y·(3 - t)", 2, wd::y_bits(f), false, wd::sq_bits(f) + 1, true));
+  o.push_back(add("Newton: rounding", 6, wd::sq_bits(f)));
+  o.push_back(mul("u = d'·y", 3, wd::dnorm_bits(f), true, wd::y_bits(f), false));
+  o.push_back(add("u rounding", 3, wd::unit_bits(f)));
+  return u;
+}
+
+UnitOps ray_setup(const ProfileFields& f) {
+  UnitOps u{"ray_setup", "§1.3-1.6", {}, 0, 1};
+  auto& o = u.ops;
+  const int k = wd::clip_quotient_bits(f);
+  o.push_back(mul("s = u·K", 3, wd::unit_bits(f), true, wd::kreg_bits(f), false));
+  o.push_back(add("s rounding", 3, wd::step_bits(f)));
+  // The pixel's point on the origin plane, for either camera (§0, §1.4).
+  o.push_back(mul("px·P, py·R", 6, wd::pixel_bits, false, wd::origin_bits(f), true));
+  o.push_back(add("o = O + px·P + py·R", 6, wd::origin_bits(f) + wd::pixel_bits + 2));
+  o.push_back(add("LO - o, HI - o", 6, wd::clip_num_bits(f)));
+  o.push_back(div("k = (LO|HI - o) / s", 6, k, wd::step_bits(f)));
+  o.push_back(cmp("k_lo < k_hi, k_near > k_in, k_far < k_out, k_in < 0, k_in > k_out", 3 + 4 + 2,
+                  k));
+  o.push_back(mux("k_near, k_far, k_in, k_out", 10, k, 2));
+  o.push_back(cmp("s = 0 axis: LO <= o <= HI", 6, wd::origin_bits(f)));
+  o.push_back(add("n = k_out - k_in + 1", 1, wd::count_bits(f)));
+  o.push_back(mul("k_in·s", 3, k, true, wd::step_bits(f), true));
+  o.push_back(add("p0 = o + Q_RND(k_in·s)", 3, wd::pos_bits(f)));
+  return u;
+}
+
+// The registers of a ray in flight: p0 (or p), s and n.
+int ray_state_bits(const ProfileFields& f) {
+  return 3 * wd::pos_bits(f) + 3 * wd::step_bits(f) + wd::count_bits(f);
+}
+
+UnitOps stepping(const ProfileFields& f) {
+  UnitOps u{"stepping", "§2", {}, 0, 1};
+  u.ops.push_back(add("p += s", 3, wd::pos_bits(f)));
+  u.ops.push_back(add("sample counter", 1, wd::count_bits(f)));
+  u.ops.push_back(cmp("counter = n", 1, wd::count_bits(f)));
+  u.ops.push_back(reg("p, s, n of the ray", ray_state_bits(f)));
+  return u;
+}
+
+UnitOps address_generator(const ProfileFields& f) {
+  UnitOps u{"address_generator", "§3.1-3.3", {}, 0, 1};
+  auto& o = u.ops;
+  const int pos = wd::pos_bits(f);
+  const int coord = wd::coord_bits(f);
+  const int half_index = std::max(1, coord - 1);  // i0 >> 1
+  o.push_back(cmp("clamp p into [LO, HI]", 6, pos));
+  o.push_back(mux("clamp select", 6, pos, 2));
+  o.push_back(cmp("i0 = LAST", 3, coord));
+  o.push_back(add("i0 - 1", 3, coord));
+  o.push_back(add("f = p - i0", 3, wd::cell_frac_bits(f)));
+  o.push_back(add("fq = Q_RND(f, wb)", 3, wd::lerp_weight_bits(f)));
+  o.push_back(mul("(i0y>>1)·HX", 1, half_index, false, wd::half_bits(f), false));
+  o.push_back(mul("(i0z>>1)·HXY", 1, half_index, false, wd::slice_bits(f), false));
+  o.push_back(add("base word address", 2, wd::word_addr_bits(f)));
+  o.push_back(mux("odd-axis increments", 3, wd::word_addr_bits(f), 2));
+  o.push_back(add("bank addresses (+1, +HX, +HXY)", 12, wd::word_addr_bits(f)));
+  return u;
+}
+
+UnitOps interpolation(const ProfileFields& f, const ref::Elaboration& e) {
+  UnitOps u{"interpolation", "§3.4-3.5", {}, 0, 1};
+  auto& o = u.ops;
+  const int wb = f.weight_bits;
+  const int word = e.value_store_bits + 3 * e.gradient_store_bits;
+  o.push_back(mux("crossbar: corner j = bank j ^ parity", 8, word, 8));
+  // The value's low value_bits - value_store_bits bits are constant zeros in
+  // every voxel (§3.4), so the lerps run on the stored bits (elaboration).
+  const int vs = e.value_store_bits;
+  lerp(o, "value lerp x", 4, vs, wb, false);
+  lerp(o, "value lerp y", 2, vs + wb, wb, false);
+  lerp(o, "value lerp z", 1, vs + 2 * wb, wb, false);
+  o.push_back(add("value Q_RND(·, sf)", 1, wd::sample_value_bits(f)));
+  if (e.gradients) {
+    const int gs = e.gradient_store_bits;
+    lerp(o, "gradient lerp x", 12, gs, wb, true);
+    lerp(o, "gradient lerp y", 6, gs + wb, wb, true);
+    lerp(o, "gradient lerp z", 3, gs + 2 * wb, wb, true);
+    o.push_back(add("gradient Q_RND(·, sf)", 3, wd::sample_grad_bits(f)));
+  }
+  return u;
+}
+
+UnitOps classification(const ProfileFields& f, const ref::Elaboration& e) {
+  UnitOps u{"classification", "§4", {}, 0, 1};
+  const int entry = e.class_color_fields * f.color_bits +
+                    (e.class_alpha_varies ? f.alpha_bits : 0) + e.class_k_fields * f.k_bits;
+  const int constant = wd::class_entry_bits(f) - entry;
+  u.ops.push_back(add("address Q_RND(value·2^(tf - vb))", 1, wd::class_addr_round_bits(f)));
+  u.ops.push_back(cmp("address clamp", 1, wd::class_addr_round_bits(f)));
+  u.ops.push_back(mem(OpKind::Ram, "classification table (fields that vary)", 1, e.class_entries,
+                      entry));
+  if (constant > 0) u.ops.push_back(reg("constant entry fields", constant));
+  return u;
+}
+
+UnitOps reflectance(const ProfileFields& f) {
+  const bool bilinear = wd::rm_bilinear(f);
+  UnitOps u{"reflectance_map", bilinear ? "§5.1-5.3, §5.5" : "§5.1-5.4", {}, 0, 1};
+  auto& o = u.ops;
+  const int g = wd::sample_grad_bits(f);
+  const int n = wd::rm_normal_bits(f);
+  const int entry = wd::rm_entry_bits(f);
+  const int wb = wd::rm_pos_frac_bits(f);
+  o.push_back(mul("gw = g·IS", 3, g, true, wd::rm_scale_bits(f), false));
+  o.push_back(add("gw rounding", 3, g));
+  o.push_back(add("N = -gw, |N|", 3, n));
+  o.push_back(cmp("major axis", 2, wd::rm_magnitude_bits(f)));
+  o.push_back(mux("N[a], N[b], |N[m]|", 3, n, 3));
+  o.push_back(add("N[a] + |N[m]|", 2, n));
+  o.push_back(
+      div("t = (N + |N[m]|)·res·2^wb / 2|N[m]|", 2, wd::rm_pos_bits(f), wd::rm_den_bits(f)));
+  o.push_back(cmp("cell clamp", 2, wd::rm_cell_bits(f)));
+  o.push_back(add("index = face·side² + iv·side + iu", 2, wd::rm_index_bits(f)));
+  if (bilinear) {
+    o.push_back(mem(OpKind::Ram, "diffuse + specular corner tables, 4 parity banks each", 8,
+                    wd::rm_bank_entries(f), entry));
+    o.push_back(mux("corner crossbar", 8, entry, 4));
+    o.push_back(add("fu, fv = t - (cell << wb)", 2, wd::rm_blend_weight_bits(f)));
+    for (const char* t : {"D", "S"}) {
+      lerp(o, std::string(t) + " lerp u", 2, entry, wb, false);
+      lerp(o, std::string(t) + " lerp v", 1, wd::rm_lerp_bits(f, 1), wb, false);
+      o.push_back(add(std::string(t) + " Q_RND(·, rf)", 1, entry));
+    }
+  } else {
+    o.push_back(mem(OpKind::Ram, "diffuse + specular tables", 2, wd::rm_entries(f), entry));
+  }
+  return u;
+}
+
+UnitOps shader(const ProfileFields& f, bool shaded) {
+  UnitOps u{"shader", "§6", {}, 0, 1};
+  auto& o = u.ops;
+  if (shaded) {
+    o.push_back(mul("kd·D, ks·S", 2, f.k_bits, false, wd::rm_entry_bits(f), false));
+    o.push_back(add("ka + kd·D + ks·S", 2, wd::intensity_sum_bits(f)));
+    o.push_back(add("I = Q_RND(·, shade_bits)", 1, wd::intensity_bits(f)));
+    o.push_back(mul("colour·I", 3, f.color_bits, false, wd::intensity_bits(f), false));
+  }
+  o.push_back(add("c = U(·, shade_bits) rounding", 3, f.shade_bits + 1));
+  o.push_back(cmp("c saturation", 3, f.shade_bits + 1));
+  return u;
+}
+
+UnitOps compositor(const ProfileFields& f) {
+  UnitOps u{"compositor", "§7.1-7.2", {}, 0, 1};
+  auto& o = u.ops;
+  const int acc = wd::acc_word_bits(f);
+  o.push_back(add("1 - A", 1, acc));
+  o.push_back(mul("w = (1 - A)·alpha", 1, acc, false, f.alpha_bits, false));
+  o.push_back(add("w rounding", 1, acc));
+  o.push_back(mul("w·c", 3, acc, false, f.shade_bits, false));
+  o.push_back(add("w·c rounding", 3, acc));
+  o.push_back(add("C += w·c, A += w", 4, acc + 1));
+  o.push_back(cmp("saturation at 1", 4, acc + 1));
+  o.push_back(reg("accumulators C, A", 4 * acc));
+  return u;
+}
+
+UnitOps ert(const ProfileFields& f) {
+  UnitOps u{"ert", "§7.3", {}, 0, 1};
+  u.ops.push_back(cmp("A >= ERT_T", 1, wd::acc_word_bits(f)));
+  u.ops.push_back(reg("ERT_T register", wd::acc_word_bits(f)));
+  return u;
+}
+
+UnitOps mip(const ProfileFields& f) {
+  UnitOps u{"mip", "§7 MIP", {}, 0, 1};
+  const int value = wd::sample_value_bits(f);
+  u.ops.push_back(cmp("value > M", 1, value));
+  u.ops.push_back(reg("M, RM registers", value + wd::mip_scale_bits(f)));
+  u.ops.push_back(mul("M·RM", 1, value, false, wd::mip_scale_bits(f), false));
+  u.ops.push_back(add("grey rounding", 1, wd::grey_bits(f)));
+  u.ops.push_back(cmp("grey saturation", 1, wd::grey_bits(f)));
+  return u;
+}
+
+UnitOps output(const ProfileFields& f) {
+  UnitOps u{"output", "§8", {}, 0, 1};
+  // x·(2^out_bits - 1) = (x << out_bits) - x: a subtractor, not a multiplier.
+  u.ops.push_back(add("x·(2^ob - 1) = (x << ob) - x", 4, wd::acc_word_bits(f) + f.out_bits));
+  u.ops.push_back(add("Q_RND(·, 0)", 4, f.out_bits + 1));
+  return u;
+}
+
+// Space leaping (docs/leaping.md, hls/space_leaping_unit.hpp): the block
+// look-up beside the address generator and the leaping stepper's search.
+UnitOps space_leaping(const ProfileFields& f, const ref::Elaboration& e) {
+  UnitOps u{"space_leaping", "docs/leaping.md", {}, 0, 1};
+  auto& o = u.ops;
+  const int lb = std::countr_zero(static_cast<unsigned>(e.leap_block));
+  const int bc = std::max(1, wd::block_coord_bits(f) - lb);  // block coordinates the volume needs
+  const int ba = bits_for(std::max(1LL, e.leap_blocks - 1));
+  const int prefix = wd::prefix_count_bits(f);
+  // Block look-up: coordinates are wiring (i0 >> lb), then the address.
+  o.push_back(mul("by·BX", 1, bc, false, bc, false));
+  o.push_back(mul("bz·BXY", 1, bc, false, ba, false));
+  o.push_back(add("block address", 2, ba));
+  o.push_back(mem(OpKind::Ram, "min-max block memory (min, max)", 1,
+                  static_cast<int>(e.leap_blocks), 2 * e.value_store_bits));
+  // The table addresses of min and max (as §4.1), two prefix reads, the test.
+  o.push_back(add("address Q_RND(min, max)", 2, wd::class_addr_round_bits(f)));
+  o.push_back(cmp("address clamp", 2, wd::class_addr_round_bits(f)));
+  o.push_back(mem(OpKind::Ram, "opacity prefix table (2 read ports)", 1,
+                  std::max(e.class_entries, 1) + 1, prefix));
+  o.push_back(cmp("prefix[hi + 1] = prefix[lo]", 1, prefix));
+  // The leap: leap_bits stages of q + 2^j·s, the candidate's block coordinates
+  // (clamp, i0 = LAST) and their comparison with the block's, and the run count.
+  const int stages = wd::leap_bits(f);
+  const int pos = wd::pos_bits(f);
+  const int count = wd::count_bits(f);
+  o.push_back(add("leap q + 2^j·s", 3 * stages, pos));
+  o.push_back(cmp("leap clamp", 6 * stages, pos));
+  o.push_back(mux("leap clamp select", 6 * stages, pos, 2));
+  o.push_back(cmp("leap i0 = LAST", 3 * stages, wd::coord_bits(f)));
+  o.push_back(cmp("leap same block", 3 * stages, bc));
+  o.push_back(add("leap run + 2^j", stages, count));
+  o.push_back(cmp("leap run + 2^j <= remaining", stages, count));
+  o.push_back(mux("leap take", stages, 3 * pos + count, 2));
+  return u;
+}
+
+// render.jitter: the pixel hash (refmodel/render/jitter.hpp) and k_in + J.
+UnitOps jitter(const ProfileFields& f) {
+  UnitOps u{"jitter", "docs/leaping.md", {}, 0, 1};
+  u.ops.push_back(mul("lowbias32 x·C", 2, 32, false, 32, false));
+  u.ops.push_back(add("k_in + J·2^-tf", 1, wd::clip_quotient_bits(f)));
+  return u;
+}
+
+// render.partial_segments (docs/pipeline.md §7a, hls/segment_opacity.hpp): the
+// ray's two weights at set-up, the optical-depth table beside the
+// classification table, w·tau2, the 2^-x ROM and its lerp, the shift and U(1 - v).
+UnitOps segment_opacity(const ProfileFields& f, const ref::Elaboration& e) {
+  UnitOps u{"segment_opacity", "§7a", {}, 0, 1};
+  auto& o = u.ops;
+  const int w = wd::segment_weight_bits(f);
+  const int mant = wd::segment_mant_bits(f);
+  const int lf = wd::segment_lerp_frac_bits(f);
+  o.push_back(add("d = k_out - k_in", 1, wd::clip_quotient_bits(f)));
+  o.push_back(add("first = 1 + j or frac(d) + j", 2, w));
+  o.push_back(reg("the ray's first and last weights", 2 * w));
+  o.push_back(cmp("k = 0, k = n - 1", 2, wd::count_bits(f)));
+  o.push_back(mux("the sample's weight", 1, w, 3));
+  o.push_back(cmp("w = 1 (bypass)", 1, w));
+  // One tau2 per classification entry the data can address (the class table's depth).
+  o.push_back(mem(OpKind::Ram, "optical depth tau2 per classification entry", 1,
+                  e.class_entries, wd::segment_tau_bits(f)));
+  o.push_back(mul("w·tau2", 1, w, false, wd::segment_tau_bits(f), false));
+  o.push_back(add("y rounding", 1, wd::segment_y_bits(f)));
+  o.push_back(mem(OpKind::Rom, "2^-x ROM (two adjacent entries per read)", 1,
+                  wd::segment_rom_entries(f), mant));
+  o.push_back(add("lerp: e0 - e1", 1, mant));
+  o.push_back(mul("lerp: (e0 - e1)·u", 1, mant, false, lf, false));
+  o.push_back(add("lerp: e0 - · and rounding", 1, mant + lf));
+  o.push_back(cmp("floor(y) > ab + 2", 1, wd::segment_y_int_bits(f)));
+  o.push_back(mux("m·2^-s (shifter)", 1, wd::segment_scaled_bits(f), wd::segment_max_shift(f) + 1));
+  o.push_back(add("1 - v", 1, wd::segment_scaled_bits(f)));
+  o.push_back(add("U(·, ab) rounding", 1, f.alpha_bits + 1));
+  o.push_back(mux("alpha_c or alpha_w", 1, f.alpha_bits, 2));
+  return u;
+}
+
+// The FIFOs and ray slots of the cycle model's pipeline (rtl_model/pipeline),
+// at the widths of what they carry.
+UnitOps pipeline_buffers(const ProfileFields& f, const ref::Elaboration& e,
+                         const rtl::pipeline::PipelineConfig& pc,
+                         const rtl::pipeline::UnitLatencies& l) {
+  UnitOps u{"pipeline_buffers", "rtl_model/pipeline", {}, 0, 1};
+  auto& o = u.ops;
+  const int slot = bits_for(pc.ray_slots - 1);
+  const int word = e.value_store_bits + 3 * e.gradient_store_bits;
+  const int count = wd::count_bits(f);
+  const int sample =
+      wd::sample_value_bits(f) + (e.gradients ? 3 * wd::sample_grad_bits(f) : 0) + slot + count;
+  o.push_back(mem(OpKind::Fifo, "ray slots (p0, s, n)", 1, pc.ray_slots, ray_state_bits(f)));
+  o.push_back(mem(OpKind::Fifo, "sample buffer (8 voxel words, weights, parity)", 1,
+                  pc.sample_buffer, 8 * word + 3 * wd::lerp_weight_bits(f) + 3 + slot + count));
+  o.push_back(mem(OpKind::Fifo, "interpolation.out", 1, l.interpolation + pc.fifo_depth, sample));
+  if (e.classification)
+    o.push_back(mem(OpKind::Fifo, "classification.out", 1, l.classification + pc.fifo_depth,
+                    sample + wd::class_entry_bits(f)));
+  if (e.compositor)
+    o.push_back(mem(OpKind::Fifo, "shading.out", 1, l.shading + pc.fifo_depth,
+                    3 * f.shade_bits + f.alpha_bits + slot + count));
+  o.push_back(mem(OpKind::Fifo, "output pixels", 1, pc.output_depth,
+                  4 * f.out_bits + 2 * wd::pixel_bits));
+  return u;
+}
+
+// ---- The resource model ---------------------------------------------------------------------
+
+// Pieces of an s-bit signed operand on an n-bit signed multiplier port: the top
+// piece signed (n bits), the others unsigned (n - 1 bits).
+int limbs(int s, int n) { return s <= n ? 1 : 1 + ceil_div(s - n, n - 1); }
+
+int signed_width(int w, bool is_signed) { return w + (is_signed ? 0 : 1); }
+
+}  // namespace
+
+const char* to_string(OpKind k) {
+  switch (k) {
+    case OpKind::Mul: return "mul";
+    case OpKind::Add: return "add";
+    case OpKind::Cmp: return "cmp";
+    case OpKind::Mux: return "mux";
+    case OpKind::Div: return "div";
+    case OpKind::Reg: return "reg";
+    case OpKind::Rom: return "rom";
+    case OpKind::Ram: return "ram";
+    case OpKind::Fifo: return "fifo";
+  }
+  return "?";
+}
+
+std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
+                                    const rtl::pipeline::PipelineConfig& pc) {
+  const ProfileFields f = hls::profile_fields(e.profile);
+  // The cycle model's elaborated latencies, whose defaults are the units' depths
+  // declared next to their kernels (hls::*_depth); the units inside a stage of
+  // the cycle model (rsqrt in the ray set-up, stepping in the address stage, the
+  // shader in the shading stage) are split by those depths.
+  const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments});
+  std::vector<UnitOps> units;
+  auto put = [&](UnitOps u, int latency, int ii = 1) {
+    u.latency = latency;
+    u.ii = ii;
+    units.push_back(std::move(u));
+  };
+  const int rsqrt = e.perspective ? rtl::pipeline::kRsqrtStages : 0;
+  if (e.perspective) put(geometry_rsqrt(f), rsqrt, l.ray_setup_interval);
+  put(ray_setup(f), l.ray_setup - rsqrt, l.ray_setup_interval);
+  put(stepping(f), hls::stepping_depth);
+  put(address_generator(f), l.address - hls::stepping_depth);
+  // Beside the address generator: adds its look-up to the requests' latency.
+  if (e.space_leaping) put(space_leaping(f, e), l.leap_lookup);
+  // Beside the direction and rsqrt pipeline, shorter than it: no latency.
+  if (e.jitter) put(jitter(f), 0, l.ray_setup_interval);
+  put(interpolation(f, e), l.interpolation);
+  if (e.classification) put(classification(f, e), l.classification);
+  if (e.reflectance_map) put(reflectance(f), l.shading - hls::shader_depth);
+  if (e.shader)
+    put(shader(f, e.reflectance_map),
+        e.reflectance_map ? hls::shader_depth
+                          : std::min(l.shading, rtl::pipeline::kUnshadedShadeStages));
+  // Beside the reflectance map and the shader (the shading stage takes the
+  // longer of the two, elaborate_latencies).
+  if (e.partial_segments) put(segment_opacity(f, e), hls::segment_opacity_depth);
+  if (e.compositor) put(compositor(f), hls::compositor_depth);
+  if (e.ert) put(ert(f), hls::ert_depth);
+  if (e.mip) put(mip(f), hls::mip_depth);
+  put(output(f), hls::output_quantization_depth);
+  put(pipeline_buffers(f, e, pc, l), 0);
+  return units;
+}
+
+// ---- Parts ----------------------------------------------------------------------------------
+const std::vector<Part>& parts() {
+  static const std::vector<Part> k = {
+      // Xilinx DS022 (Virtex-E 1.8 V FPGAs), table 1: XCV1000E, CLB array 64 x 96 = 6,144
+      // CLBs of 2 slices, 2 LUT4 + 2 FF per slice; 96 BlockSelectRAM+ blocks of 4,096 bits
+      // (393,216 bits); no multipliers. The family of the VIZARD II card's era (2001).
+      {"xcv1000e", Family::VirtexE, "Xilinx DS022 Virtex-E, table 1", 24576, 24576, 0, 96},
+      // Xilinx DS031 (Virtex-II), table 1: XC2V3000, 14,336 slices (2 LUT4 + 2 FF each),
+      // 96 MULT18X18, 96 18-kbit SelectRAM blocks.
+      {"xc2v3000", Family::Virtex2, "Xilinx DS031 Virtex-II, table 1", 28672, 28672, 96, 96},
+      // Xilinx DS180 (7 Series FPGAs overview), table 3: XC7A200T, 33,650 slices (4 LUT6 +
+      // 8 FF each), 740 DSP48E1, 365 RAMB36E1 = 730 RAMB18E1.
+      {"xc7a200t", Family::Series7, "Xilinx DS180 7 Series, table 3 (Artix-7)", 134600, 269200,
+       740, 730},
+      // DS180 table 4: XC7K325T, 50,950 slices, 840 DSP48E1, 445 RAMB36E1 = 890 RAMB18E1.
+      {"xc7k325t", Family::Series7, "Xilinx DS180 7 Series, table 4 (Kintex-7)", 203800, 407600,
+       840, 890},
+  };
+  return k;
+}
+
+const Part& find_part(const std::string& name) {
+  for (const Part& p : parts())
+    if (p.name == name) return p;
+  std::string list;
+  for (const Part& p : parts()) list += (list.empty() ? "" : ", ") + p.name;
+  throw Error("unknown part \"" + name + "\" (known: " + list + ")");
+}
+
+Resources& Resources::operator+=(const Resources& r) {
+  luts += r.luts;
+  ffs += r.ffs;
+  dsps += r.dsps;
+  brams += r.brams;
+  return *this;
+}
+
+int dsp_count(const Op& m, Family f) {
+  if (f == Family::VirtexE) return 0;  // no multiplier blocks: LUTs
+  // As Yosys synth_xilinx (mul2dsp): a product narrower than 9 bits, or a
+  // 1-bit operand, stays in LUTs.
+  if (m.a < 2 || m.b < 2 || m.a + m.b < 9) return 0;
+  const int sa = signed_width(m.a, m.a_signed);
+  const int sb = signed_width(m.b, m.b_signed);
+  if (f == Family::Virtex2) return limbs(sa, 18) * limbs(sb, 18);  // MULT18X18 (DS031)
+  // DSP48E1: 25 x 18 signed (UG479); either operand may take the 25-bit port.
+  return std::min(limbs(sa, 25) * limbs(sb, 18), limbs(sa, 18) * limbs(sb, 25));
+}
+
+namespace {
+struct Aspect {
+  int depth, width;
+};
+}  // namespace
+
+int bram_count(int depth, int width, Family f) {
+  if (depth <= 0 || width <= 0) return 0;
+  // Small memories go to LUT RAM (distributed RAM): at most 2 kbit, or 32 deep.
+  if (static_cast<long long>(depth) * width <= 2048 || depth <= 32) return 0;
+  // Virtex-E 4-kbit BlockSelectRAM (DS022); Virtex-II RAMB16 (DS031) and 7-series
+  // RAMB18E1 (UG473, simple dual port up to 36 bits) share the 18-kbit aspect ratios.
+  static const std::vector<Aspect> kVirtexE = {{4096, 1}, {2048, 2}, {1024, 4}, {512, 8},
+                                               {256, 16}};
+  static const std::vector<Aspect> k18k = {{16384, 1}, {8192, 2}, {4096, 4}, {2048, 9},
+                                           {1024, 18}, {512, 36}};
+  const auto& aspects = f == Family::VirtexE ? kVirtexE : k18k;
+  int best = 0;
+  for (const Aspect& a : aspects) {
+    const int n = ceil_div(depth, a.depth) * ceil_div(width, a.width);
+    if (best == 0 || n < best) best = n;
+  }
+  return best;
+}
+
+Resources op_resources(const Op& op, Family f) {
+  const bool lut6 = f == Family::Series7;
+  Resources r;
+  const double n = op.count;
+  switch (op.kind) {
+    case OpKind::Mul: {
+      const int d = dsp_count(op, f);
+      if (d > 0) {
+        r.dsps = n * d;
+        // Pieces beyond one are summed in the DSP cascade up to two per column;
+        // more need a LUT adder of the product width per extra piece.
+        r.luts = n * std::max(0, d - 2) * (op.a + op.b);
+        r.ffs = 0;  // the output register is the DSP's PREG
+      } else {
+        // Array multiplier in LUTs: LUT6 ~ a·b/2 (two partial-product bits per
+        // LUT on the carry chain), LUT4 a·b (MULT_AND, one bit per LUT).
+        r.luts = n * (lut6 ? std::ceil(op.a * op.b / 2.0) : op.a * op.b);
+        r.ffs = n * (op.a + op.b);
+      }
+      break;
+    }
+    case OpKind::Add:
+      r.luts = n * op.a;  // one LUT per bit on the carry chain
+      r.ffs = n * op.a;   // registered result
+      break;
+    case OpKind::Cmp:
+      // Yosys synth_xilinx maps an a-bit a < b to 3a/4 LUT6 on the carry chain
+      // (docs/resources.md); LUT4: one bit pair per LUT.
+      r.luts = n * std::ceil(lut6 ? 0.75 * op.a : op.a / 2.0);
+      r.ffs = n;
+      break;
+    case OpKind::Mux:
+      // LUT6: a 4:1 mux per LUT (F7/F8 muxes combine up to 16:1); LUT4: 2:1 per LUT.
+      r.luts = n * op.a * (lut6 ? ceil_div(op.b, 4) : std::max(1, op.b - 1));
+      r.ffs = n * op.a;
+      break;
+    case OpKind::Div:
+      // Fully pipelined restoring divider: one (divisor + 1)-bit subtract and
+      // select per quotient bit; each stage registers its remainder and the
+      // quotient bits so far.
+      r.luts = n * op.a * (op.b + 1);
+      r.ffs = n * (op.a * (op.b + 1) + op.a * (op.a + 1) / 2.0);
+      break;
+    case OpKind::Reg:
+      r.ffs = n * op.a;
+      break;
+    case OpKind::Rom:
+    case OpKind::Ram:
+    case OpKind::Fifo: {
+      const int b = bram_count(op.a, op.b, f);
+      if (b > 0) {
+        r.brams = n * b;
+      } else if (op.kind == OpKind::Fifo) {
+        // LUT RAM, simple dual port: RAM32M (32 x 6 in 4 LUT6, UG474) or RAM16X1D (2 LUT4).
+        r.luts = n * (lut6 ? ceil_div(op.a, 32) * ceil_div(op.b, 6) * 4
+                           : ceil_div(op.a, 16) * op.b * 2);
+      } else {
+        // Distributed ROM/RAM, single read port: 64 x 1 per LUT6, 16 x 1 per LUT4.
+        r.luts = n * (lut6 ? ceil_div(op.a, 64) : ceil_div(op.a, 16)) * op.b;
+      }
+      r.ffs = n * op.b;  // the read register
+      if (op.kind == OpKind::Fifo) r.ffs += n * 2 * bits_for(op.a);  // read/write pointers
+      break;
+    }
+  }
+  return r;
+}
+
+ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
+  ResourceReport rep;
+  rep.part = part;
+  rep.elaboration = e;
+  const rtl::pipeline::PipelineConfig pc;
+  for (UnitOps& u : unit_operators(e, pc)) {
+    UnitResources ur{std::move(u), {}};
+    for (const Op& op : ur.unit.ops) ur.res += op_resources(op, part.family);
+    rep.total += ur.res;
+    rep.units.push_back(std::move(ur));
+  }
+  const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments});
+  rep.latency_ray_setup = l.ray_setup;
+  // From a sample's address to its composited result (or the MIP register).
+  rep.latency_sample = l.address + l.leap_lookup + l.interpolation + l.classification + l.shading +
+                       (e.mip ? hls::mip_depth : hls::compositor_depth);
+  rep.ii = 1;
+  return rep;
+}
+
+ResourceReport estimate_resources(const ref::Scene& scene, const Part& part) {
+  const SceneVolume sv = load_scene_volume(scene);
+  check_fixed_point(scene, sv, false);
+  ResourceReport r = estimate_resources(ref::elaborate(scene, sv.volume, sv.gradients), part);
+  r.scene = scene.origin;
+  r.profile_name = scene.precision_name;
+  return r;
+}
+
+double cost(const Resources& r, const Part& p) {
+  double c = 0.0;
+  if (p.luts > 0) c += r.luts / p.luts;
+  if (p.ffs > 0) c += r.ffs / p.ffs;
+  if (p.dsps > 0) c += r.dsps / p.dsps;
+  if (p.brams > 0) c += r.brams / p.brams;
+  return c;
+}
+
+namespace {
+
+std::string op_shape(const Op& op) {
+  std::ostringstream s;
+  switch (op.kind) {
+    case OpKind::Mul:
+      s << op.a << (op.a_signed ? "s" : "u") << " x " << op.b << (op.b_signed ? "s" : "u");
+      break;
+    case OpKind::Mux: s << op.a << " bits, " << op.b << ":1"; break;
+    case OpKind::Div: s << op.a << " / " << op.b; break;
+    case OpKind::Rom:
+    case OpKind::Ram:
+    case OpKind::Fifo: s << op.a << " x " << op.b << " (" << static_cast<long long>(op.a) * op.b
+                         << " bits)"; break;
+    default: s << op.a << " bits";
+  }
+  return s.str();
+}
+
+const char* bram_name(Family f) {
+  return f == Family::VirtexE ? "BlockRAM 4k" : f == Family::Virtex2 ? "RAMB16" : "RAMB18";
+}
+const char* dsp_name(Family f) {
+  return f == Family::VirtexE ? "MULT (none)" : f == Family::Virtex2 ? "MULT18X18" : "DSP48E1";
+}
+
+std::string pct(double used, int cap) {
+  if (cap <= 0) return used > 0 ? "n/a" : "-";
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << 100.0 * used / cap << " %";
+  return s.str();
+}
+
+}  // namespace
+
+std::string report_markdown(const ResourceReport& r) {
+  std::ostringstream s;
+  const Family f = r.part.family;
+  s << "# Resource report: " << r.scene << "\n\n";
+  s << "Profile `" << r.profile_name << "`, part **" << r.part.name << "** (" << r.part.note
+    << "). Estimates by the model of docs/resources.md.\n\n";
+  s << "## Totals\n\n| resource | used | available | share |\n|---|---:|---:|---:|\n";
+  s << "| LUT | " << std::lround(r.total.luts) << " | " << r.part.luts << " | "
+    << pct(r.total.luts, r.part.luts) << " |\n";
+  s << "| FF | " << std::lround(r.total.ffs) << " | " << r.part.ffs << " | "
+    << pct(r.total.ffs, r.part.ffs) << " |\n";
+  s << "| " << dsp_name(f) << " | " << std::lround(r.total.dsps) << " | " << r.part.dsps << " | "
+    << pct(r.total.dsps, r.part.dsps) << " |\n";
+  s << "| " << bram_name(f) << " | " << std::lround(r.total.brams) << " | " << r.part.brams
+    << " | " << pct(r.total.brams, r.part.brams) << " |\n\n";
+  s << "Latency: ray set-up " << r.latency_ray_setup << " cycles; a sample " << r.latency_sample
+    << " cycles from its address to the compositor (plus the SDRAM's, measured by the cycle "
+       "model); initiation interval " << r.ii << " (one sample per clock).\n\n";
+  s << "## Units\n\n| unit | § | latency | II | LUT | FF | DSP | BRAM |\n"
+       "|---|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const auto& u : r.units)
+    s << "| " << u.unit.name << " | " << u.unit.section << " | " << u.unit.latency << " | "
+      << u.unit.ii << " | " << std::lround(u.res.luts) << " | " << std::lround(u.res.ffs) << " | "
+      << std::lround(u.res.dsps) << " | " << std::lround(u.res.brams) << " |\n";
+  s << "\n## Left out (elaboration)\n\n";
+  if (r.elaboration.omitted.empty()) s << "Nothing: the scene uses every unit.\n";
+  for (const auto& o : r.elaboration.omitted) s << "- **" << o.unit << "**: " << o.reason << "\n";
+  s << "\nSizes from the data: value field " << r.elaboration.value_store_bits
+    << " stored bits (profile " << r.elaboration.profile.value_bits << "), gradient field "
+    << r.elaboration.gradient_store_bits << " bits per component (profile "
+    << r.elaboration.profile.gradient_bits << "), classification table "
+    << r.elaboration.class_entries << " entries (profile " << (1 << r.elaboration.profile.tf_addr_bits)
+    << ").\n";
+  s << "\n## Operators\n\n| unit | operator | kind | count | shape | LUT | FF | DSP | BRAM |\n"
+       "|---|---|---|---:|---|---:|---:|---:|---:|\n";
+  for (const auto& u : r.units)
+    for (const Op& op : u.unit.ops) {
+      const Resources x = op_resources(op, f);
+      s << "| " << u.unit.name << " | " << op.what << " | " << to_string(op.kind) << " | "
+        << op.count << " | " << op_shape(op) << " | " << std::lround(x.luts) << " | "
+        << std::lround(x.ffs) << " | " << std::lround(x.dsps) << " | " << std::lround(x.brams)
+        << " |\n";
+    }
+  return s.str();
+}
+
+std::string report_json(const ResourceReport& r) {
+  using nlohmann::json;
+  auto res = [](const Resources& x) {
+    return json{{"lut", x.luts}, {"ff", x.ffs}, {"dsp", x.dsps}, {"bram", x.brams}};
+  };
+  json j;
+  j["scene"] = r.scene;
+  j["profile"] = r.profile_name;
+  j["part"] = {{"name", r.part.name}, {"source", r.part.note}, {"lut", r.part.luts},
+               {"ff", r.part.ffs}, {"dsp", r.part.dsps}, {"bram", r.part.brams},
+               {"dsp_kind", dsp_name(r.part.family)}, {"bram_kind", bram_name(r.part.family)}};
+  j["total"] = res(r.total);
+  j["latency"] = {{"ray_setup", r.latency_ray_setup}, {"sample", r.latency_sample}, {"ii", r.ii}};
+  json units = json::array();
+  for (const auto& u : r.units) {
+    json ops = json::array();
+    for (const Op& op : u.unit.ops)
+      ops.push_back({{"what", op.what}, {"kind", to_string(op.kind)}, {"count", op.count},
+                     {"a", op.a}, {"b", op.b}, {"a_signed", op.a_signed},
+                     {"b_signed", op.b_signed}, {"resources", res(op_resources(op, r.part.family))}});
+    units.push_back({{"name", u.unit.name}, {"section", u.unit.section},
+                     {"latency", u.unit.latency}, {"ii", u.unit.ii}, {"resources", res(u.res)},
+                     {"operators", ops}});
+  }
+  j["units"] = units;
+  json omitted = json::array();
+  for (const auto& o : r.elaboration.omitted)
+    omitted.push_back({{"unit", o.unit}, {"reason", o.reason}});
+  j["omitted"] = omitted;
+  j["sizes"] = {{"value_store_bits", r.elaboration.value_store_bits},
+                {"gradient_store_bits", r.elaboration.gradient_store_bits},
+                {"class_entries", r.elaboration.class_entries}};
+  return j.dump(2);
+}
+
+}  // namespace voxcast::cosim

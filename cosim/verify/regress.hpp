@@ -1,0 +1,43 @@
+// `voxcast regress`: the bit-accuracy regression a hardware engineer runs on
+// every change. Each shipped scene under each precision preset goes through
+// the hls kernels and the bit-true reference; the hls image must equal the
+// bit-true one and hash to its golden file. A golden file is only written
+// (`--bless`) after the case's accuracy against the float reference was
+// measured and met the profile's floor, and it records those numbers.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "refmodel/render/quant_image.hpp"
+
+namespace voxcast::cosim {
+
+struct RegressOptions {
+  std::string scenes_dir;                // every *.toml in it
+  std::string golden_dir;                // <scene>.<profile>.json
+  std::vector<std::string> profiles;     // presets to run
+  bool bless = false;
+  std::vector<std::string> overrides;    // --set, applied to every scene
+  std::string junit_path;                // --junit: the cases as JUnit XML (empty: none)
+};
+
+// FNV-1a (64 bit) over the image's size, bit depth and pixels.
+std::string image_hash(const ref::QuantImage& img);
+
+// Minimum accuracy against the float reference for blessing a golden file.
+struct AccuracyFloor {
+  double psnr_db;
+  double pct_within_1lsb;
+};
+AccuracyFloor accuracy_floor(const std::string& profile);
+
+// Runs every case, prints one line per case and a summary to `os`; returns
+// the number of failed cases (0: all bit-exact and matching their goldens).
+// With options.junit_path, the same cases as JUnit XML (cosim/reports/junit.hpp):
+// classname "regress.SCENE", name PROFILE, a failure naming the first pixel
+// where hls and bit-true differ, or the changed or missing golden.
+int run_regress(const RegressOptions& options, std::ostream& os);
+
+}  // namespace voxcast::cosim

@@ -1,0 +1,1 @@
+// A fixture for the test cosim.rooms_catches: a source outside every room.
