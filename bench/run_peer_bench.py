@@ -232,7 +232,8 @@ def main():
 
     w, h = vtk_info["image"]
     print(f"peer     {shown(args.scene)}: {w}x{h}, {args.threads} threads, "
-          f"{args.rounds} paired rounds x {args.repeat} frames; VTK {vtk_info['vtk_version']} "
+          f"{args.rounds} paired round{'s' if args.rounds > 1 else ''} x {args.repeat} "
+          f"frame{'s' if args.repeat > 1 else ''}; VTK {vtk_info['vtk_version']} "
           f"vtkFixedPointVolumeRayCastMapper ({vtk_info['threads']} threads)")
     print(f"{'engine':<24}{'leaping':>8}{'samples':>11}{'ms/frame':>11}{'min ms':>10}"
           f"{'VTK/engine':>12}{'min/min':>9}")
