@@ -14,6 +14,13 @@ VOXCAST_PACKAGES=(
   libclang-14-dev
 )
 
+# What only the test suite needs (.ci/run sets VOXCAST_TEST_DEPS=1): Debian's
+# headless Chromium, which renders the HTML report pages in the test
+# Html.ChromiumRendersTheCosimPage (about 45 s to install, docs/extremes.md).
+if [ "${VOXCAST_TEST_DEPS:-0}" = 1 ]; then
+  VOXCAST_PACKAGES+=(chromium)
+fi
+
 missing=()
 for p in "${VOXCAST_PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

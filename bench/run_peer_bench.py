@@ -24,7 +24,6 @@ prints a ratio it did not measure. Other failures: one line, status 1.
 import argparse
 import json
 import os
-import re
 import shutil
 import statistics
 import subprocess
@@ -103,25 +102,22 @@ def run(cmd, what):
     return r.stdout
 
 
-BENCH_ROW = re.compile(r"^(\w+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s")
-
-
-def parse_voxcast_bench(text, engines):
-    """`voxcast bench` prints a text table (cosim/bench.cpp, print_bench):
-    engine, samples, median s, min s, M samples/s, ns/sample, vs ref. ms per
-    frame from ns/sample x samples (5 significant digits; median s has 3 decimals)."""
+def parse_voxcast_bench(path, engines):
+    """`voxcast bench --json FILE` (cosim/explore/bench.cpp, bench_json): per
+    engine its samples per frame and the median and fastest wall time."""
+    try:
+        with open(path) as f:
+            report = json.load(f)
+    except (OSError, ValueError) as e:
+        fail(f"voxcast bench --json {path}: cannot read it ({e})")
     out = {}
-    for line in text.splitlines():
-        m = BENCH_ROW.match(line)
-        if not m or m.group(1) not in engines:
-            continue
-        samples, median_s, min_s, ns = int(m.group(2)), float(m.group(3)), float(m.group(4)), \
-            float(m.group(6))
-        ms = ns * samples * 1e-6 if samples > 0 and ns > 0 else median_s * 1e3
-        out[m.group(1)] = {"ms": ms, "min_ms": min(min_s * 1e3, ms), "samples": samples}
+    for e in report.get("engines", []):
+        if e.get("engine") in engines:
+            out[e["engine"]] = {"ms": e["median_seconds"] * 1e3, "min_ms": e["min_seconds"] * 1e3,
+                                "samples": e["samples"]}
     lost = [e for e in engines if e not in out]
     if lost:
-        fail(f"voxcast bench printed no row for {', '.join(lost)}:\n{text}")
+        fail(f"voxcast bench --json {path} has no result for {', '.join(lost)}")
     return out
 
 
@@ -195,11 +191,12 @@ def main():
         return r
 
     def time_voxcast(leap):
-        text = run([voxcast, "bench", args.scene, "--engines", ",".join(engines), "--repeat",
-                    str(args.repeat), "--set", f"render.threads={args.threads}", "--set",
-                    f"render.space_leaping={'true' if leap == 'on' else 'false'}"] + sets,
-                   "voxcast bench")
-        return parse_voxcast_bench(text, engines)
+        report = os.path.join(args.out, f"voxcast-bench-leaping-{leap}.json")
+        run([voxcast, "bench", args.scene, "--engines", ",".join(engines), "--repeat",
+             str(args.repeat), "--json", report, "--set", f"render.threads={args.threads}",
+             "--set", f"render.space_leaping={'true' if leap == 'on' else 'false'}"] + sets,
+            "voxcast bench")
+        return parse_voxcast_bench(report, engines)
 
     steps = [("vtk", None)] + [("voxcast", leap) for leap in leaping]
     vtk_rounds, vtk_mins = [], []

@@ -1,5 +1,6 @@
 // voxcast cosim SCENE --out DIR: every engine on one scene, their agreement
 // proven and their error against the truth measured.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "cosim/commands/command.hpp"
 #include "cosim/engines/cosim.hpp"
+#include "cosim/explore/pages.hpp"
 #include "cosim/reports/files.hpp"
 #include "cosim/reports/junit.hpp"
 
@@ -18,7 +20,7 @@ Subcommand add_cosim(CLI::App& voxcast) {
     std::string scene, out, junit;
     ref::Overrides sets;
     TruthSettings truth;
-    bool strict = false;
+    bool strict = false, html = false;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = voxcast.add_subcommand(
@@ -27,6 +29,8 @@ Subcommand add_cosim(CLI::App& voxcast) {
   cmd->add_option("--out", a->out, "Output folder (report.json, layers.exr, PNGs)")->required();
   cmd->add_option("--junit", a->junit,
                   "Write the engine pairs' verdicts as JUnit XML here (Jenkins, GitLab)");
+  cmd->add_flag("--html", a->html,
+                "Write OUT/cosim.html: images, error histogram, divergence trace, cycles, resources");
   add_set_option(*cmd, a->sets);
   cmd->add_flag("--strict", a->strict,
                 "Refuse a scene with precision hazards (exit status 6) instead of warning");
@@ -39,6 +43,11 @@ Subcommand add_cosim(CLI::App& voxcast) {
             const auto r = run_cosim(scene, a->out, a->truth, a->strict);
             print_cosim_summary(std::cout, scene, r);
             if (!a->junit.empty()) write_junit_file(a->junit, cosim_junit(scene, r));
+            if (a->html) {
+              const std::string page = (std::filesystem::path(a->out) / "cosim.html").string();
+              write_text_file(page, cosim_page(scene, r, a->out));
+              std::cout << "wrote      " << page << "\n";
+            }
             if (!r.bit_exact) {
               std::cerr << "voxcast: " << r.mismatch.engine << " differs from "
                         << (r.mismatch.engine == "rtl" ? "hls" : "bit-true") << " at pixel ("

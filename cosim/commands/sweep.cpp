@@ -35,6 +35,13 @@ Subcommand add_sweep(CLI::App& voxcast) {
       ->capture_default_str();
   cmd->add_flag("--progress", a->options.progress, "Progress on stderr even when not a TTY");
   cmd->add_flag("--no-plots", a->no_plots, "Do not run gnuplot");
+  cmd->add_flag("--resume", a->options.resume,
+                "Keep the finished points of OUT/points (the same sweep, checked) and compute the rest");
+  cmd->add_option("--truth-cache", a->options.truth_cache,
+                  "Folder of truth images kept on disk, shared by shards and later runs "
+                  "(default OUT/truth)");
+  cmd->add_flag("--html", a->options.html,
+                "Write OUT/sweep.html: the plots with every point labelled, the front marked");
   cmd->add_option("--part", a->part, "Part of the resource columns (voxcast report's parts)")
       ->capture_default_str();
   cmd->add_option("--truth-oversampling", a->truth.oversampling,

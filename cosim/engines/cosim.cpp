@@ -149,10 +149,9 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   } else if (!r.bit_exact) {
     Mismatch& m = r.mismatch;
     first_difference(hls, bt, m.x, m.y);
-    bittrue::RayTrace bt_trace;
-    bittrue::bt_cast_ray(setup, memory, m.x, m.y, &bt_trace);
-    const bittrue::Divergence d =
-        bittrue::first_divergence(hls_trace_ray(setup, memory, m.x, m.y), bt_trace);
+    bittrue::bt_cast_ray(setup, memory, m.x, m.y, &m.bt_trace);
+    m.hls_trace = hls_trace_ray(setup, memory, m.x, m.y);
+    const bittrue::Divergence d = bittrue::first_divergence(m.hls_trace, m.bt_trace);
     m.sample = d.sample;
     m.unit = d.unit;
     m.reproducer = write_reproducer(out_dir, scene, m);
@@ -163,6 +162,7 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   const ref::Image high = render_truth_with_progress(scene, sv, truth_settings);
   r.seconds_truth = seconds_since(t0);
   r.truth_accuracy = measure_accuracy(hls, high);
+  r.truth_histogram = error_histogram(hls, high);
 
   // Images: float, hls, bit-true, the signed difference and a heat map.
   const ref::Image hls_img = hls.to_image();

@@ -21,6 +21,9 @@ struct Mismatch {
   bittrue::Unit unit = bittrue::Unit::Output;
   std::string reproducer;         // path of the saved reproducer scene
   std::string engine = "hls";     // the engine that differs from the reference
+  // hls against bit-true: both rays' unit outputs, sample by sample (the
+  // report page's per-unit trace); empty when the cycle model differs.
+  bittrue::RayTrace hls_trace, bt_trace;
 };
 
 // An engine cosim could not run, and why (a profile the hls kernels are not
@@ -41,6 +44,7 @@ struct CosimResult {
   Accuracy accuracy;          // hls against the float reference at the same settings
   TruthSettings truth;        // how the truth was rendered
   Accuracy truth_accuracy;    // hls (bit-true if !hls_ran) against the truth
+  ErrorHistogram truth_histogram;  // the same pixels' worst-channel errors, binned
   Mismatch mismatch;          // when !bit_exact
   std::uint64_t samples_float = 0, samples_hls = 0;
   std::vector<Hazard> hazards;  // the precision guard's (cosim/engines/warnings.hpp)

@@ -1,8 +1,13 @@
 #include "cosim/engines/truth.hpp"
+#include "cosim/reports/files.hpp"
 #include "cosim/reports/progress.hpp"
 
 #include <toml++/toml.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "refmodel/error.hpp"
@@ -95,7 +100,27 @@ std::shared_ptr<const ref::Image> TruthCache::get(const ref::Scene& scene, const
   }
   if (mine) {
     try {
-      promise.set_value(std::make_shared<const ref::Image>(render_truth(scene, sv, t)));
+      const std::string path = dir_.empty() ? std::string() : truth_file(dir_, key);
+      std::optional<ref::Image> image;
+      if (!path.empty()) image = read_truth_file(path, key);
+      if (!image) {
+        image = render_truth(scene, sv, t);
+        {
+          const std::lock_guard lock(mutex_);
+          ++renders_;
+        }
+        if (!path.empty()) {
+          // The disk copy saves later runs a render; without it this run
+          // loses nothing, so a folder that cannot be written is a warning.
+          try {
+            make_parent_dir(path);
+            write_truth_file(path, key, *image);
+          } catch (const Error& e) {
+            std::cerr << "voxcast: warning: the truth is not kept on disk: " << e.what() << "\n";
+          }
+        }
+      }
+      promise.set_value(std::make_shared<const ref::Image>(std::move(*image)));
     } catch (...) {
       promise.set_exception(std::current_exception());
     }
@@ -105,7 +130,65 @@ std::shared_ptr<const ref::Image> TruthCache::get(const ref::Scene& scene, const
 
 std::size_t TruthCache::renders() const {
   const std::lock_guard lock(mutex_);
-  return images_.size();
+  return renders_;
+}
+
+namespace {
+
+constexpr char kTruthMagic[] = "voxcast truth 1\n";
+
+std::uint64_t fnv1a64(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
+
+std::string truth_file(const std::string& dir, const std::string& key) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%016llx.truth",
+                static_cast<unsigned long long>(fnv1a64(key)));
+  return (std::filesystem::path(dir) / name).string();
+}
+
+// Layout: the magic line, the key's length and bytes, width and height (int32),
+// then width x height x 4 doubles (r, g, b, alpha), all in the machine's byte order.
+std::optional<ref::Image> read_truth_file(const std::string& path, const std::string& key) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::string magic(sizeof kTruthMagic - 1, '\0');
+  std::uint64_t key_size = 0;
+  in.read(magic.data(), static_cast<std::streamsize>(magic.size()));
+  in.read(reinterpret_cast<char*>(&key_size), sizeof key_size);
+  if (!in || magic != kTruthMagic || key_size != key.size()) return std::nullopt;
+  std::string stored(key_size, '\0');
+  std::int32_t w = 0, h = 0;
+  in.read(stored.data(), static_cast<std::streamsize>(key_size));
+  in.read(reinterpret_cast<char*>(&w), sizeof w);
+  in.read(reinterpret_cast<char*>(&h), sizeof h);
+  if (!in || stored != key || w <= 0 || h <= 0) return std::nullopt;
+  ref::Image image(w, h);
+  in.read(reinterpret_cast<char*>(image.pixels.data()),
+          static_cast<std::streamsize>(image.pixels.size() * sizeof(glm::dvec4)));
+  if (!in || in.peek() != std::char_traits<char>::eof()) return std::nullopt;
+  return image;
+}
+
+void write_truth_file(const std::string& path, const std::string& key, const ref::Image& image) {
+  std::string bytes = kTruthMagic;
+  const std::uint64_t key_size = key.size();
+  const std::int32_t w = image.width, h = image.height;
+  bytes.append(reinterpret_cast<const char*>(&key_size), sizeof key_size);
+  bytes += key;
+  bytes.append(reinterpret_cast<const char*>(&w), sizeof w);
+  bytes.append(reinterpret_cast<const char*>(&h), sizeof h);
+  bytes.append(reinterpret_cast<const char*>(image.pixels.data()),
+               image.pixels.size() * sizeof(glm::dvec4));
+  write_file_atomically(path, bytes);
 }
 
 }  // namespace voxcast::cosim

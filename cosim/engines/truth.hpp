@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "cosim/engines/engines.hpp"
@@ -61,15 +62,34 @@ ref::Image render_truth_with_progress(const ref::Scene& scene, const SceneVolume
 
 // Truth images shared by the points of a sweep: each distinct truth_key is
 // rendered once, by the first caller; concurrent callers wait for it.
+//
+// With a folder (sweep --truth-cache, default OUT/truth), each truth is also
+// kept on disk under its content hash, FNV-1a 64 of its truth_key:
+// DIR/HASH.truth holds the key and the image's doubles bit for bit, so a
+// later run or another shard that shares the folder reads it instead of
+// rendering it again (a file whose key differs, a hash collision, is not
+// used). Files are written whole and renamed into place: a run stopped
+// mid-write leaves no truncated truth.
 class TruthCache {
  public:
+  TruthCache() = default;
+  explicit TruthCache(std::string dir) : dir_(std::move(dir)) {}
   std::shared_ptr<const ref::Image> get(const ref::Scene& scene, const SceneVolume& sv,
                                         const TruthSettings& t);
-  std::size_t renders() const;  // distinct truths rendered so far
+  std::size_t renders() const;  // truths this cache rendered (not read from disk)
 
  private:
+  std::string dir_;
   mutable std::mutex mutex_;
   std::map<std::string, std::shared_future<std::shared_ptr<const ref::Image>>> images_;
+  std::size_t renders_ = 0;
 };
+
+// The truth file of `key` in `dir` (DIR/HASH.truth), and its reading and
+// writing; read_truth_file returns nothing when the file is absent, is not
+// a truth file, or holds another key.
+std::string truth_file(const std::string& dir, const std::string& key);
+std::optional<ref::Image> read_truth_file(const std::string& path, const std::string& key);
+void write_truth_file(const std::string& path, const std::string& key, const ref::Image& image);
 
 }  // namespace voxcast::cosim

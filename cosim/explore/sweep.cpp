@@ -1,9 +1,13 @@
 #include "cosim/explore/sweep.hpp"
+#include "cosim/explore/pages.hpp"
 #include "cosim/reports/files.hpp"
 #include "cosim/reports/progress.hpp"
 
 #include <toml++/toml.h>
 #include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
 
 #include <atomic>
 #include <chrono>
@@ -242,6 +246,148 @@ void write_run_json(const std::string& path, const SweepOptions& o, const SweepS
   write_json_file(path, j);
 }
 
+// --- The journal: every finished point on disk ---------------------------------------
+
+namespace fs = std::filesystem;
+
+fs::path points_dir(const SweepOptions& o) { return fs::path(o.out_dir) / "points"; }
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// What makes two runs the same sweep: the table's description without the
+// shard, its columns, and the scene file's bytes (an edited scene is another
+// sweep even under the same name).
+nlohmann::json sweep_identity(const Plan& plan, const std::vector<Column>& columns) {
+  nlohmann::json id = sweep_meta(plan, Shard{});
+  id["columns"] = nlohmann::json::array();
+  for (const Column& c : columns) id["columns"].push_back(c.name);
+  id["scene_file"] = read_text(plan.scene_path);
+  return id;
+}
+
+// "its axes differ" for the first key two identities disagree on.
+std::string identity_difference(const nlohmann::json& mine, const nlohmann::json& theirs) {
+  for (auto it = mine.begin(); it != mine.end(); ++it)
+    if (!theirs.contains(it.key()) || theirs.at(it.key()) != it.value())
+      return it.key() == "scene_file" ? "the scene file's contents differ"
+                                      : "its " + it.key() + " differ";
+  for (auto it = theirs.begin(); it != theirs.end(); ++it)
+    if (!mine.contains(it.key())) return "it has a " + it.key() + " this sweep has not";
+  return "";
+}
+
+std::string point_file(const fs::path& dir, std::size_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%06zu.json", index);
+  return (dir / name).string();
+}
+
+// A fresh journal: DIR/points emptied, its sweep.json written.
+void start_journal(const fs::path& dir, const nlohmann::json& identity) {
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  if (ec) throw Error("sweep: cannot clear " + dir.string() + " (" + ec.message() + ")");
+  make_output_dir(dir.string());
+  write_file_atomically((dir / "sweep.json").string(),
+                        nlohmann::json{{"identity", identity}}.dump(2) + "\n");
+}
+
+// --resume: the journal must be this sweep's; leftovers of writes a kill
+// interrupted are removed.
+void check_journal(const fs::path& dir, const nlohmann::json& identity) {
+  const std::string path = (dir / "sweep.json").string();
+  if (!fs::exists(path))
+    throw Error("sweep --resume: " + path + " does not exist: " + dir.parent_path().string() +
+                " holds no sweep to resume (run it without --resume)");
+  nlohmann::json stored;
+  try {
+    stored = nlohmann::json::parse(read_text(path)).at("identity");
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("sweep --resume: " + path + ": not a sweep journal (" + e.what() + ")");
+  }
+  if (const std::string d = identity_difference(identity, stored); !d.empty())
+    throw Error("sweep --resume: " + dir.parent_path().string() +
+                " holds another sweep: " + d + " (run it without --resume, or use another --out)");
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(e.path());
+}
+
+void journal_point(const fs::path& dir, const Table& header, const PointOutcome& p) {
+  Table one{header.meta, header.columns, {p.row}};
+  nlohmann::json j = to_json(one);
+  j["seconds"] = p.seconds;
+  write_file_atomically(point_file(dir, p.row.index),
+                        j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+}
+
+std::optional<PointOutcome> read_point(const fs::path& dir, std::size_t index,
+                                       std::size_t columns) {
+  const std::string path = point_file(dir, index);
+  if (!fs::exists(path)) return std::nullopt;
+  PointOutcome p;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(read_text(path));
+    const Table t = table_from_json(j, path);
+    if (t.rows.size() != 1 || t.rows[0].index != index || t.rows[0].cells.size() != columns)
+      throw Error(path + ": not the journal entry of point " + std::to_string(index));
+    p.row = t.rows[0];
+    p.seconds = j.at("seconds").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": not a journal entry (" + e.what() + ")");
+  }
+  return p;
+}
+
+// --- Stopping on SIGINT / SIGTERM -------------------------------------------------------
+
+std::atomic<int> g_stop_signal{0};
+extern "C" void on_stop_signal(int sig) { g_stop_signal.store(sig); }
+
+// For a run's duration: SIGINT and SIGTERM set a flag that a watcher turns
+// into one line and an immediate exit (128 + the signal). Finished points are
+// already on disk; the points in flight are dropped (a Slurm job has seconds
+// between SIGTERM and SIGKILL, a point may take minutes).
+class StopOnSignal {
+ public:
+  StopOnSignal(std::function<std::string()> what_was_kept)
+      : what_was_kept_(std::move(what_was_kept)) {
+    g_stop_signal.store(0);
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+    watcher_ = std::jthread([this](std::stop_token stop) {
+      while (!stop.stop_requested()) {
+        if (const int sig = g_stop_signal.load()) {
+          std::cerr << "\nvoxcast: sweep: stopped by " << (sig == SIGINT ? "SIGINT" : "SIGTERM")
+                    << ": " << what_was_kept_() << std::endl;
+          std::_Exit(128 + sig);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    });
+  }
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+  ~StopOnSignal() {
+    watcher_.request_stop();
+    watcher_.join();
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+
+ private:
+  std::function<std::string()> what_was_kept_;
+  struct sigaction old_int_ {}, old_term_ {};
+  std::jthread watcher_;
+};
+
 }  // namespace
 
 const std::vector<ColumnGroup>& column_groups() {
@@ -307,18 +453,55 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   for (std::size_t i = 0; i < plan.size(); ++i)
     if (o.shard.owns(i)) mine.push_back(i);
 
-  // Points in parallel; each writes only its own slot, so the table's order
-  // and contents do not depend on --jobs.
-  Caches caches;
+  Table table;
+  table.meta = sweep_meta(plan, o.shard);
+  table.columns = table_columns(plan);
+  const fs::path journal = points_dir(o);
+  const nlohmann::json identity = sweep_identity(plan, table.columns);
+  if (o.resume)
+    check_journal(journal, identity);
+  else
+    start_journal(journal, identity);
+
+  // The points already in the journal (--resume), then the rest in parallel;
+  // each writes only its own slot, so the table's order and contents depend
+  // neither on --jobs nor on where a run was stopped.
   std::vector<PointOutcome> outcomes(mine.size());
+  std::vector<std::size_t> todo;
+  std::size_t resumed = 0;
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    std::optional<PointOutcome> p;
+    if (o.resume) p = read_point(journal, mine[k], table.columns.size());
+    if (p) {
+      outcomes[k] = std::move(*p);
+      ++resumed;
+    } else {
+      todo.push_back(k);
+    }
+  }
+  Caches caches{{}, TruthCache(o.truth_cache.empty() ? (fs::path(o.out_dir) / "truth").string()
+                                                     : o.truth_cache)};
   std::vector<std::exception_ptr> failures(mine.size());
   const int threads = std::max(1, ref::worker_count(0) / o.jobs);
-  Progress progress("sweep", mine.size(), o.progress);
+  // Journal writes take this lock; a stop takes it for good before it counts,
+  // so the count it prints is exactly the entries on disk.
+  std::mutex journal_mutex;
+  std::size_t kept = resumed;
+  const StopOnSignal stop_on_signal([&] {
+    journal_mutex.lock();  // never released: the process ends next
+    return std::to_string(kept) + " of " + std::to_string(mine.size()) + " points kept in " +
+           journal.string() + "; the same command with --resume goes on";
+  });
+  Progress progress("sweep", todo.size(), o.progress);
   std::atomic<std::size_t> next{0};
   const auto worker = [&] {
-    for (std::size_t k = next.fetch_add(1); k < mine.size(); k = next.fetch_add(1)) {
+    for (std::size_t t = next.fetch_add(1); t < todo.size(); t = next.fetch_add(1)) {
+      const std::size_t k = todo[t];
       try {
         outcomes[k] = run_point(plan, mine[k], threads, caches);
+        const std::lock_guard lock(journal_mutex);
+        journal_point(journal, table, outcomes[k]);
+        ++kept;
       } catch (...) {
         failures[k] = std::current_exception();
       }
@@ -327,24 +510,23 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   };
   {
     std::vector<std::jthread> pool;
-    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(mine.size())); ++j)
+    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(todo.size())); ++j)
       pool.emplace_back(worker);
     worker();
   }
   for (const std::exception_ptr& f : failures)
     if (f) std::rethrow_exception(f);
 
-  Table table;
-  table.meta = sweep_meta(plan, o.shard);
-  table.columns = table_columns(plan);
   for (PointOutcome& p : outcomes) table.rows.push_back(p.row);
   mark_fronts(table, o.shard.count == 1);
 
   SweepSummary s;
   s.points = mine.size();
+  s.points_resumed = resumed;
   s.points_total = plan.size();
   s.truth_renders = caches.truths.renders();
-  s.written = write_outputs(table, o.out_dir, o.plots && o.shard.count == 1, s.warnings);
+  s.written = write_outputs(table, o.out_dir, o.plots && o.shard.count == 1,
+                            o.html && o.shard.count == 1, s.warnings);
   s.seconds = seconds_since(t0);
   const std::string run = (std::filesystem::path(o.out_dir) / "run.json").string();
   write_run_json(run, o, s, outcomes);
@@ -353,7 +535,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
 }
 
 SweepSummary run_sweep_merge(const std::vector<std::string>& dirs, const std::string& out_dir,
-                             bool plots) {
+                             bool plots, bool html) {
   if (dirs.empty()) throw Error("sweep-merge: give the output folders of the shards");
   const auto t0 = StopwatchClock::now();
   std::vector<Table> shards;
@@ -369,13 +551,13 @@ SweepSummary run_sweep_merge(const std::vector<std::string>& dirs, const std::st
   s.merged = true;
   s.points = t.rows.size();
   s.points_total = t.rows.size();
-  s.written = write_outputs(t, out_dir, plots, s.warnings);
+  s.written = write_outputs(t, out_dir, plots, html, s.warnings);
   s.seconds = seconds_since(t0);
   return s;
 }
 
 std::vector<std::string> write_outputs(const Table& table, const std::string& dir, bool plots,
-                                       std::vector<std::string>& warnings) {
+                                       bool html, std::vector<std::string>& warnings) {
   const auto path = [&](const char* f) { return (std::filesystem::path(dir) / f).string(); };
   std::vector<std::string> written = {path("results.csv"), path("results.json")};
   write_csv(table, written[0]);
@@ -383,6 +565,10 @@ std::vector<std::string> write_outputs(const Table& table, const std::string& di
   if (plots) {
     const std::vector<std::string> p = write_plots(table, dir, warnings);
     written.insert(written.end(), p.begin(), p.end());
+  }
+  if (html) {
+    written.push_back(path("sweep.html"));
+    write_text_file(written.back(), sweep_page(table));
   }
   return written;
 }
@@ -393,7 +579,9 @@ void print_sweep_summary(std::ostream& os, const SweepSummary& s) {
     os << "merged   " << s.points << " points in " << s.seconds << " s\n";
   else
     os << "points   " << s.points << " of " << s.points_total << " in " << s.seconds << " s ("
-       << s.truth_renders << " truth image" << (s.truth_renders == 1 ? "" : "s") << " rendered)\n";
+       << s.truth_renders << " truth image" << (s.truth_renders == 1 ? "" : "s") << " rendered"
+       << (s.points_resumed > 0 ? ", " + std::to_string(s.points_resumed) + " resumed" : "")
+       << ")\n";
   for (const std::string& w : s.warnings) std::cerr << "voxcast: warning: " << w << "\n";
   for (const std::string& w : s.written) os << "wrote    " << w << "\n";
 }

@@ -27,6 +27,13 @@ struct SweepOptions {
   Shard shard;            // 0/1: the whole sweep
   bool progress = false;  // force the progress bar (it is on when stderr is a TTY)
   bool plots = true;      // PNG and SVG through gnuplot
+  bool html = false;      // DIR/sweep.html (cosim/explore/pages.hpp); not for a shard
+  // --resume: keep the finished points of DIR/points (the same sweep, checked)
+  // and compute only the others; without it a run starts afresh.
+  bool resume = false;
+  // --truth-cache: the folder of truths on disk (TruthCache), shared by the
+  // shards and later runs of a sweep; empty = DIR/truth.
+  std::string truth_cache;
 };
 
 // What a column group sees of one point, after the design's image is rendered.
@@ -56,7 +63,8 @@ const std::vector<ColumnGroup>& column_groups();
 const std::vector<Front>& pareto_fronts();
 
 struct SweepSummary {
-  std::size_t points = 0;         // points this run computed
+  std::size_t points = 0;         // points of this run (computed or resumed)
+  std::size_t points_resumed = 0; // of those, read back from DIR/points (--resume)
   std::size_t points_total = 0;   // points of the whole sweep
   std::size_t truth_renders = 0;  // distinct truth images rendered (sweep; 0 for a merge)
   bool merged = false;
@@ -65,19 +73,26 @@ struct SweepSummary {
   std::vector<std::string> warnings;  // e.g. plots skipped
 };
 
+// The journal: each point is written to DIR/points/NNNNNN.json the moment it
+// finishes (atomically: files.hpp write_file_atomically), after
+// DIR/points/sweep.json records which sweep they belong to. SIGINT and
+// SIGTERM (Ctrl-C; Slurm's preemption and time limit) end the run at once,
+// after one line saying how many points were kept, with status 128 + the
+// signal; `--resume` goes on from there, and its results.csv and
+// results.json are byte-identical to an uninterrupted run's.
 SweepSummary run_sweep(const Plan& plan, const SweepOptions& options);
 
 // Reads DIR/results.json of each input, joins them (merge_tables), marks the
 // fronts over all points and writes results.csv, results.json and the plots.
 SweepSummary run_sweep_merge(const std::vector<std::string>& dirs, const std::string& out_dir,
-                             bool plots = true);
+                             bool plots = true, bool html = false);
 
 void print_sweep_summary(std::ostream& os, const SweepSummary& s);
 
 // The table's files: results.csv, results.json; with plots, the gnuplot
 // script, its data and PNG + SVG (skipped with a warning when gnuplot is
-// missing). Returns the paths written.
+// missing); with html, sweep.html. Returns the paths written.
 std::vector<std::string> write_outputs(const Table& table, const std::string& dir, bool plots,
-                                       std::vector<std::string>& warnings);
+                                       bool html, std::vector<std::string>& warnings);
 
 }  // namespace voxcast::cosim::sweep

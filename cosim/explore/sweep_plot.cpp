@@ -32,14 +32,28 @@ std::string file_stem(const std::string& key) {
 struct PlotPoint {
   double x, y;
   bool front;
+  std::string label;  // the point's configuration (point_label)
 };
 
+// A label as a gnuplot data string: double-quoted, no quote or backslash inside.
+std::string quoted(std::string label) {
+  for (char& c : label)
+    if (c == '"' || c == '\\' || c == '\n') c = '\'';
+  return "\"" + label + "\"";
+}
+
+// x y "label" per line: `using 1:2` draws the points, `using 1:2:3 with labels` names them.
 void write_dat(const std::string& path, const std::vector<PlotPoint>& pts, bool front_only) {
   std::ofstream out(path);
   if (!out) throw Error(path + ": cannot write");
   out.precision(17);
   for (const PlotPoint& p : pts)
-    if (!front_only || p.front) out << p.x << " " << p.y << "\n";
+    if (!front_only || p.front) out << p.x << " " << p.y << " " << quoted(p.label) << "\n";
+}
+
+// Every point named by its configuration, beside it.
+std::string labels_layer(const std::string& dat) {
+  return ", \\\n     '" + dat + "' using 1:2:3 with labels offset char 0.6,0.6 left font ',7' notitle";
 }
 
 }  // namespace
@@ -98,7 +112,7 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
     for (const Row& r : t.rows) {
       const auto x = r.cells[xc].value(), y = r.cells[psnr].value();
       if (ok(r) && x && y && std::isfinite(*y))
-        pf.push_back({*x, *y, r.cells[front].text == "yes"});
+        pf.push_back({*x, *y, r.cells[front].text == "yes", point_label(t, r)});
     }
     std::sort(pf.begin(), pf.end(),
               [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
@@ -113,7 +127,7 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
                                 "'\nset ylabel 'PSNR against the truth (dB)'\n"
                                 "plot '" + stem + ".dat' using 1:2 with points pt 7 title 'points', \\\n"
                                 "     '" + stem + "_front.dat' using 1:2 with linespoints lw 2 pt 6 "
-                                "ps 2 title 'Pareto front'\n"});
+                                "ps 2 title 'Pareto front'" + labels_layer(stem + ".dat") + "\n"});
   };
   front_plot("psnr_vs_fps", "rtl_fps", "pareto_psnr_fps", "rtl frames/s (cycle model, 100 MHz)");
   front_plot("psnr_vs_resources", "part_pct", "pareto_psnr_resources",
@@ -129,7 +143,7 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
       double x = 0;
       if (!is_number(r.cells[a].text, x)) numeric = false;
       const auto y = r.cells[psnr].value();
-      if (numeric && ok(r) && y && std::isfinite(*y)) pts.push_back({x, *y, false});
+      if (numeric && ok(r) && y && std::isfinite(*y)) pts.push_back({x, *y, false, point_label(t, r)});
     }
     if (!numeric || pts.empty()) continue;
     const std::string stem = "psnr_vs_" + file_stem(key);
@@ -137,7 +151,8 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
     bodies.push_back({stem, "set xlabel '" + key +
                                 "'\nset ylabel 'PSNR against the truth (dB)'\n"
                                 "plot '" +
-                                stem + ".dat' using 1:2 with points pt 7 title 'points'\n"});
+                                stem + ".dat' using 1:2 with points pt 7 title 'points'" +
+                                labels_layer(stem + ".dat") + "\n"});
   }
   for (const char* term : {"pngcairo size 800,600", "svg size 800,600"})
     for (const auto& [stem, body] : bodies) {

@@ -39,6 +39,18 @@ std::size_t Table::column(const std::string& name) const {
   throw Error("sweep table: no column \"" + name + "\"");
 }
 
+std::string point_label(const Table& table, const Row& row) {
+  std::string label;
+  const std::size_t axes = table.meta.at("axes").size();
+  for (std::size_t a = 0; a < axes && a < row.cells.size(); ++a) {
+    const std::string& key = table.columns[a].name;
+    const std::size_t dot = key.rfind('.');
+    if (!label.empty()) label += ' ';
+    label += (dot == std::string::npos ? key : key.substr(dot + 1)) + "=" + row.cells[a].text;
+  }
+  return label;
+}
+
 std::vector<std::optional<bool>> pareto_front(
     const std::vector<std::vector<std::optional<double>>>& points,
     const std::vector<bool>& maximize) {

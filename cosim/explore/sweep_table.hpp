@@ -51,6 +51,11 @@ struct Table {
   std::size_t column(const std::string& name) const;
 };
 
+// A point's configuration as a plot label: its varied keys' values by their
+// last name part, "profile=balanced oversampling=2" (the axes are the
+// table's first meta["axes"].size() columns).
+std::string point_label(const Table& table, const Row& row);
+
 // --- Pareto ---------------------------------------------------------------------
 // Point p dominates q iff p is at least as good as q in every objective and
 // strictly better in one. The front is the set of points no other point

@@ -1,5 +1,8 @@
 #include "cosim/reports/files.hpp"
 
+#include <unistd.h>
+
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
@@ -15,6 +18,19 @@ void write_text_file(const std::string& path, const std::string& text) {
   f << text;
   f.close();
   if (!f) throw Error(path + ": cannot write");
+}
+
+void write_file_atomically(const std::string& path, const std::string& bytes) {
+  static std::atomic<unsigned> serial{0};
+  const std::string tmp = path + ".tmp." + std::to_string(getpid()) + "." +
+                          std::to_string(serial.fetch_add(1));
+  write_text_file(tmp, bytes);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw Error(path + ": cannot write (" + ec.message() + ")");
+  }
 }
 
 void write_json_file(const std::string& path, const nlohmann::json& j) {

@@ -11,6 +11,12 @@ namespace voxcast::cosim {
 // voxcast::Error naming the path if it cannot be written completely.
 void write_text_file(const std::string& path, const std::string& text);
 
+// Writes `bytes` to `path` so that no reader ever sees a part of it: into a
+// temporary file beside it (PATH.tmp.PID.N), then renamed over `path`. A run
+// killed at any moment leaves the old file or the new one, and at worst a
+// temporary file (which readers skip). Throws voxcast::Error naming the path.
+void write_file_atomically(const std::string& path, const std::string& bytes);
+
 // Writes `j` as indented JSON (a trailing newline). The text is made before the
 // file is opened, so a failure leaves no file behind; bytes that are not UTF-8
 // (a path a user named in another encoding) become U+FFFD instead of failing

@@ -20,9 +20,9 @@ struct JUnitCase {
   std::string name;
   double seconds = 0.0;
   enum class Outcome { Passed, Failed, Skipped } outcome = Outcome::Passed;
-  std::string type;     // failure: its kind ("CHANGED", "MISMATCH", "MISSING", ...)
-  std::string message;  // failure or skip: one line naming what is wrong
-  std::string details;  // failure: the element's text (more lines), may be empty
+  std::string type = {};     // failure: its kind ("CHANGED", "MISMATCH", "MISSING", ...)
+  std::string message = {};  // failure or skip: one line naming what is wrong
+  std::string details = {};  // failure: the element's text (more lines), may be empty
 };
 
 struct JUnitSuite {

@@ -60,6 +60,24 @@ Accuracy measure_accuracy(const ref::QuantImage& test, const ref::Image& truth) 
   return a;
 }
 
+const char* ErrorHistogram::label(int bin) {
+  static const char* names[kBins] = {"0", "<=1", "<=2", "<=4", "<=8", "<=16", ">16"};
+  return names[bin];
+}
+
+ErrorHistogram error_histogram(const ref::QuantImage& test, const ref::Image& truth) {
+  check_sizes(test, truth);
+  ErrorHistogram h;
+  for (std::size_t i = 0; i < test.pixels.size(); ++i) {
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, channel_error_lsb(test, truth, i, c));
+    int bin = 0;
+    while (bin < ErrorHistogram::kBins - 1 && worst > ErrorHistogram::kUpper[bin]) ++bin;
+    ++h.count[bin];
+  }
+  return h;
+}
+
 namespace {
 
 // The normalised 1-D Gaussian; the 2-D window is its outer product, which is

@@ -5,6 +5,8 @@
 // colour channels (premultiplied, the volume alone).
 #pragma once
 
+#include <cstdint>
+
 #include <cstddef>
 #include <vector>
 
@@ -24,6 +26,18 @@ struct Accuracy {
 };
 
 Accuracy measure_accuracy(const ref::QuantImage& test, const ref::Image& truth);
+
+// How many pixels have their worst channel's error (as measure_accuracy
+// measures it, in LSBs) in each bin: exactly 0, at most 1, 2, 4, 8, 16, and
+// more than 16. The bins sum to the pixel count; bin 0 plus bin 1 is
+// measure_accuracy's pct_within_1lsb share.
+struct ErrorHistogram {
+  static constexpr int kBins = 7;
+  static constexpr double kUpper[kBins - 1] = {0.0, 1.0, 2.0, 4.0, 8.0, 16.0};
+  static const char* label(int bin);  // "0", "<=1", "<=2", ..., ">16"
+  std::uint64_t count[kBins] = {};
+};
+ErrorHistogram error_histogram(const ref::QuantImage& test, const ref::Image& truth);
 
 // --- SSIM (Wang, Bovik, Sheikh & Simoncelli, IEEE Trans. Image Processing 13(4),
 // 2004, eq. 13 and section III-C) ---------------------------------------------
