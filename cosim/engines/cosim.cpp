@@ -36,6 +36,28 @@ ref::Image difference(const ref::Image& a, const ref::Image& b) {
   return d;
 }
 
+}  // namespace
+
+void write_cosim_images(const std::string& out_dir, const ref::Scene& scene,
+                        const ref::Image& float_image, const ref::QuantImage& bittrue_image,
+                        const ref::QuantImage& hls_image, bool hls_ran,
+                        const ref::Image* truth_image, std::vector<std::string>& written) {
+  const auto path = [&](const char* name) { return (std::filesystem::path(out_dir) / name).string(); };
+  const ref::Image hls_img = hls_image.to_image();
+  const ref::Image diff = difference(hls_img, float_image);
+  write_exr_layers(path("layers.exr"), {{"float", &float_image}, {"hls", &hls_img}, {"diff", &diff}});
+  write_image(path("float.png"), float_image, scene.render.background);
+  if (hls_ran) write_image(path("hls.png"), hls_img, scene.render.background);
+  write_image(path("bittrue.png"), bittrue_image.to_image(), scene.render.background);
+  write_image(path("diff.png"), error_heat_map(hls_image, float_image, 4.0), glm::dvec3(0.0));
+  if (truth_image) write_image(path("truth.png"), *truth_image, scene.render.background);
+  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png", "truth.png"})
+    if ((hls_ran || std::string(f) != "hls.png") && (truth_image || std::string(f) != "truth.png"))
+      written.push_back(path(f));
+}
+
+namespace {
+
 // The first pixel, in row-major order, where the two images differ.
 bool first_difference(const ref::QuantImage& a, const ref::QuantImage& b, int& x, int& y) {
   for (y = 0; y < a.height; ++y)
@@ -164,18 +186,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
   r.truth_accuracy = measure_accuracy(hls, high);
   r.truth_histogram = error_histogram(hls, high);
 
-  // Images: float, hls, bit-true, the signed difference and a heat map.
-  const ref::Image hls_img = hls.to_image();
-  const ref::Image diff = difference(hls_img, truth);
+  write_cosim_images(out_dir, scene, truth, bt, hls, r.hls_ran, &high, r.written);
   const auto path = [&](const char* name) { return (std::filesystem::path(out_dir) / name).string(); };
-  write_exr_layers(path("layers.exr"), {{"float", &truth}, {"hls", &hls_img}, {"diff", &diff}});
-  write_image(path("float.png"), truth, scene.render.background);
-  if (r.hls_ran) write_image(path("hls.png"), hls_img, scene.render.background);
-  write_image(path("bittrue.png"), bt.to_image(), scene.render.background);
-  write_image(path("diff.png"), error_heat_map(hls, truth, 4.0), glm::dvec3(0.0));
-  write_image(path("truth.png"), high, scene.render.background);
-  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png", "truth.png"})
-    if (r.hls_ran || std::string(f) != "hls.png") r.written.push_back(path(f));
 
   nlohmann::json j;
   j["scene"] = scene.origin;

@@ -61,6 +61,15 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
 
 void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r);
 
+// The images of a cosim in OUT (the ray caster's and VIRIM's): layers.exr
+// (float, hls and their difference), float.png, hls.png (if it ran),
+// bittrue.png, diff.png (|hls - float| as a heat map, 4 LSB full scale) and,
+// given one, truth.png; appends the paths to `written`.
+void write_cosim_images(const std::string& out_dir, const ref::Scene& scene,
+                        const ref::Image& float_image, const ref::QuantImage& bittrue_image,
+                        const ref::QuantImage& hls_image, bool hls_ran,
+                        const ref::Image* truth_image, std::vector<std::string>& written);
+
 // The cosim as JUnit cases (cosim --junit): classname "cosim.SCENE", one case
 // per engine pair: "hls == bit-true" and "rtl == hls", failing with the first
 // differing pixel, the sample and the unit, or skipped naming why the engine

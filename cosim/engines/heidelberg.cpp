@@ -286,17 +286,8 @@ CosimResult run_cosim_heidelberg(const ref::Scene& scene, const std::string& out
   }
   r.accuracy = measure_accuracy(hls, truth);
 
-  const ref::Image hls_img = hls.to_image();
-  ref::Image diff(truth.width, truth.height);
-  for (std::size_t i = 0; i < diff.pixels.size(); ++i) diff.pixels[i] = hls_img.pixels[i] - truth.pixels[i];
+  write_cosim_images(out_dir, scene, truth, bt, hls, r.hls_ran, nullptr, r.written);
   const auto path = [&](const char* name) { return (std::filesystem::path(out_dir) / name).string(); };
-  write_exr_layers(path("layers.exr"), {{"float", &truth}, {"hls", &hls_img}, {"diff", &diff}});
-  write_image(path("float.png"), truth, scene.render.background);
-  if (r.hls_ran) write_image(path("hls.png"), hls_img, scene.render.background);
-  write_image(path("bittrue.png"), bt.to_image(), scene.render.background);
-  write_image(path("diff.png"), error_heat_map(hls, truth, 4.0), glm::dvec3(0.0));
-  for (const char* f : {"layers.exr", "float.png", "hls.png", "bittrue.png", "diff.png"})
-    if (r.hls_ran || std::string(f) != "hls.png") r.written.push_back(path(f));
 
   nlohmann::json j;
   j["scene"] = scene.origin;
