@@ -884,10 +884,16 @@ void expect_round_ball(const Volume& v, const SynthSeries& s, const Ball& ball) 
 }
 
 struct TiltCase {
+  const char* name;
   double tilt_deg;
   std::array<double, 3> table;  // the slice positions' direction
   int slices;
 };
+
+std::ostream& operator<<(std::ostream& os, const TiltCase& c) {
+  return os << c.name << ": plane tilted " << c.tilt_deg << " deg, table (" << c.table[0] << ", "
+            << c.table[1] << ", " << c.table[2] << "), " << c.slices << " slices";
+}
 
 class DicomTilt : public testing::TestWithParam<TiltCase> {};
 
@@ -919,8 +925,10 @@ TEST_P(DicomTilt, BallStaysRound) {
 }
 
 INSTANTIATE_TEST_SUITE_P(DicomLoader, DicomTilt,
-                         testing::Values(TiltCase{20.0, {0.0, 0.0, 1.0}, 40},
-                                         TiltCase{12.0, {0.2, 0.0, 1.0}, 36}));
+                         testing::Values(TiltCase{"tilt20", 20.0, {0.0, 0.0, 1.0}, 40},
+                                         TiltCase{
+                                             "plane12_table_oblique", 12.0, {0.2, 0.0, 1.0}, 36}),
+                         [](const testing::TestParamInfo<TiltCase>& i) { return i.param.name; });
 
 // Without the gantry correction the same series is refused as before.
 TEST(DicomLoader, TiltRefusedWithoutResampling) {
