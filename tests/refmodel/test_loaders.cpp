@@ -930,6 +930,22 @@ INSTANTIATE_TEST_SUITE_P(DicomLoader, DicomTilt,
                                              "plane12_table_oblique", 12.0, {0.2, 0.0, 1.0}, 36}),
                          [](const testing::TestParamInfo<TiltCase>& i) { return i.param.name; });
 
+// Both at once: a tilted series with one slice missing keeps its slice count.
+TEST(DicomLoader, TiltAndMissingSliceTogether) {
+  const SynthSeries s = synth_series(20.0, {0.0, 0.0, 1.0}, 2.5, 40, 64);
+  const Ball ball{{0.3, -2.0, 35.0}, 12.0};
+  ScratchDir dir;
+  write_series(dir.path(), s, ball);
+  fs::remove(dir / "IM110");  // inside the ball
+  std::ostringstream notices;
+  const Volume v = load_dicom_series(dir.path().string(), {.notices = &notices});
+  EXPECT_EQ(v.dims, (std::array<int, 3>{64, 64, 40}));
+  expect_round_ball(v, s, ball);
+  EXPECT_EQ(notices.str(), "voxcast: " + dir.path().string() +
+                               ": gantry tilt 20.0 deg and 1 uneven gap resampled onto 64x64x40 "
+                               "at 1x1x2.349 mm (linear)\n");
+}
+
 // Without the gantry correction the same series is refused as before.
 TEST(DicomLoader, TiltRefusedWithoutResampling) {
   const SynthSeries s = synth_series(20.0, {0.0, 0.0, 1.0}, 2.5, 8, 16);
