@@ -942,6 +942,7 @@ Volume load_dicom_series(const std::string& folder, const DicomOptions& options)
   for (std::size_t z = 0; z < slices.size(); ++z)
     for (std::size_t k = 0; k < per_slice; ++k)
       v.data[z * per_slice + k] = static_cast<std::uint16_t>(raw_value(slices[z], k) - shift);
+  // Step 5: an irregular series onto a regular grid (rule 7).
   if (!uneven.empty() || !tilted.empty())
     resample(v, slices, static_cast<std::uint16_t>(lo - shift), !tilted.empty(), options);
   validate(v, folder);
