@@ -12,7 +12,8 @@ namespace voxcast::cosim {
 
 SceneVolume load_scene_volume(const ref::Scene& scene) {
   SceneVolume sv{ref::load_volume(scene.volume.source, scene.base_dir,
-                                  scene.volume.raw ? &*scene.volume.raw : nullptr),
+                                  scene.volume.raw ? &*scene.volume.raw : nullptr,
+                                  {.resample = scene.volume.resample}),
                  {}};
   ref::validate_against_volume(scene, sv.volume);
   sv.gradients = ref::compute_gradients(sv.volume, scene.volume.gradient);

@@ -99,7 +99,8 @@ void dicom(const std::uint8_t* data, std::size_t size) {
   fs::create_directories(folder, ec);
   write_file(folder / "slice0001.dcm", data, size);
   try {
-    check_volume(ref::load_dicom_series(folder.string(), kParseTimeout), "load_dicom_series");
+    check_volume(ref::load_dicom_series(folder.string(), {.parse_timeout = kParseTimeout}),
+                 "load_dicom_series");
   } catch (const Error& e) {
     // A child that exits on its own (not by a signal) has printed a sanitizer
     // report: a bug in our code that runs there, never a clean rejection.

@@ -27,6 +27,7 @@ struct VolumeDesc {
   std::optional<RawSpec> raw;  // set when volume.dims/type are given
   std::optional<Crop> crop;    // VIRIM's cubic sub-regions; whole volume if absent
   GradientOperator gradient = GradientOperator::Central;
+  bool resample = true;  // DICOM: resample a gantry-tilted or unevenly spaced series (else refuse)
 };
 
 enum class Projection { Perspective, Parallel };

@@ -49,7 +49,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
             "heidelberg"}},
       {"rtl", rtl_key_names()},
       {"precision", precision_keys()},
-      {"volume", {"source", "dims", "type", "spacing", "endian", "crop", "gradient"}},
+      {"volume", {"source", "dims", "type", "spacing", "endian", "crop", "gradient", "resample"}},
       {"volume.crop", {"lo", "hi"}},
       {"classification", {"interpolation", "points", "ka", "kd", "ks", "shininess"}},
       {"classification.points[]", {"value", "color", "alpha"}},
@@ -362,6 +362,7 @@ void read_volume(const TableReader& r, VolumeDesc& v) {
   v.source = r.string("source", v.source);
   if (v.source.empty()) r.fail("source", "is empty");
   v.gradient = parse_gradient_operator(r.string("gradient", "central", {"central", "sobel"}));
+  v.resample = r.boolean("resample", v.resample);
   if (r.has("dims") || r.has("type")) {
     RawSpec raw;
     if (!r.has("dims")) r.fail("dims", "is required when volume.type is given (raw files)");
@@ -680,7 +681,8 @@ static void heidelberg_to_toml(const Scene& s, toml::table& root) {
 
 std::string scene_to_toml(const Scene& s) {
   toml::table volume{{"source", s.volume.source},
-                     {"gradient", to_string(s.volume.gradient)}};
+                     {"gradient", to_string(s.volume.gradient)},
+                     {"resample", s.volume.resample}};
   if (s.volume.source.rfind("phantom:", 0) != 0) {
     const std::filesystem::path src(s.volume.source);
     volume.insert_or_assign(

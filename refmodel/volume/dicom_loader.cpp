@@ -5,6 +5,8 @@
 // tried; files that are not DICOM (README, LICENSE) and DICOM files without
 // pixel data (DICOMDIR) are skipped. Slices are ordered by their position along
 // the slice normal, ImagePositionPatient . (row x column of ImageOrientationPatient).
+// A gantry-tilted or unevenly spaced series is resampled onto a regular grid
+// (slice_resample.hpp; docs/volumes.md, rule 7) unless options.resample is false.
 //
 // Before GDCM parses a file, its data element structure is walked here: Debian's
 // GDCM 3.0 aborts the process on an assertion for many truncated files, and
@@ -34,6 +36,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <map>
 #include <mutex>
@@ -46,6 +49,7 @@
 #include "refmodel/error.hpp"
 #include "refmodel/volume/child_process.hpp"
 #include "refmodel/volume/loaders.hpp"
+#include "refmodel/volume/slice_resample.hpp"
 
 namespace voxcast::ref {
 namespace {
@@ -78,9 +82,9 @@ std::string trim(std::string s) {
   return s.substr(b);
 }
 
-std::string num(double v) {
+std::string num(double v, const char* format = "%.6g") {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
+  std::snprintf(buf, sizeof buf, format, v);
   return buf;
 }
 
@@ -760,9 +764,43 @@ std::int32_t raw_value(const Slice& s, std::size_t k) {
 
 bool near(double a, double b, double tolerance) { return std::abs(a - b) <= tolerance; }
 
+// Step 5 (rule 7): `v` holds the slices in order along the normal; it becomes
+// their resampling onto a regular grid, and a line on `options.notices` says so.
+void resample(Volume& v, const std::vector<Slice>& slices, std::uint16_t fill, bool tilted,
+              const DicomOptions& options) {
+  const std::array<double, 6>& o = slices.front().orientation;
+  const double row_len = std::hypot(o[0], o[1], o[2]), column_len = std::hypot(o[3], o[4], o[5]);
+  const StackLayout layout{v.dims[0], v.dims[1], v.spacing.x, v.spacing.y};
+  const std::size_t per_slice = slices.front().words.size();
+  std::vector<StackSlice> stack;
+  for (std::size_t z = 0; z < slices.size(); ++z) {
+    const std::array<double, 3>& p = slices[z].position;
+    stack.push_back({slices[z].name, v.data.data() + z * per_slice,
+                     (p[0] * o[0] + p[1] * o[1] + p[2] * o[2]) / row_len,
+                     (p[0] * o[3] + p[1] * o[4] + p[2] * o[5]) / column_len,
+                     slices[z].along_normal});
+  }
+  const RegularGrid grid = plan_regular_grid(stack, layout, v.source);
+  std::vector<std::uint16_t> data = resample_stack(stack, layout, grid, fill);
+  v.data = std::move(data);
+  v.dims[2] = grid.slices;
+  v.spacing.z = grid.spacing_z;
+  v.bits = bits_for(*std::max_element(v.data.begin(), v.data.end()));
+
+  std::string what;
+  if (tilted) what = "gantry tilt " + num(grid.tilt_deg, "%.1f") + " deg";
+  if (grid.uneven_gaps > 0)
+    what += (what.empty() ? "" : " and ") + std::to_string(grid.uneven_gaps) +
+            (grid.uneven_gaps == 1 ? " uneven gap" : " uneven gaps");
+  std::ostream& out = options.notices != nullptr ? *options.notices : std::cerr;
+  out << "voxcast: " << v.source << ": " << what << " resampled onto " << v.dims[0] << "x"
+      << v.dims[1] << "x" << v.dims[2] << " at " << num(v.spacing.x, "%.4g") << "x"
+      << num(v.spacing.y, "%.4g") << "x" << num(v.spacing.z, "%.4g") << " mm (linear)\n";
+}
+
 }  // namespace
 
-Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds parse_timeout) {
+Volume load_dicom_series(const std::string& folder, const DicomOptions& options) {
   quiet_gdcm();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw Error(folder + ": no such folder");
@@ -774,7 +812,7 @@ Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds pa
   if (ec) throw Error(folder + ": cannot list the folder (" + ec.message() + ")");
   std::sort(files.begin(), files.end());
   std::vector<std::string> skipped;
-  std::vector<Slice> slices = read_slices(files, folder, parse_timeout, skipped);
+  std::vector<Slice> slices = read_slices(files, folder, options.parse_timeout, skipped);
   if (slices.empty()) {
     std::string list;
     for (const std::string& n : skipped) list += (list.empty() ? "" : ", ") + n;
@@ -823,7 +861,8 @@ Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds pa
   if (voxels > kMaxLoadVoxels)
     throw Error(folder + ": " + std::to_string(voxels) + " voxels, more than the limit of 2^31");
 
-  // Step 3: order along the slice normal; gaps must be even, positions distinct.
+  // Step 3: order along the slice normal; positions distinct. Uneven gaps and
+  // positions off the normal (gantry tilt) are resampled in step 5, or refused.
   const std::array<double, 6>& o = first.orientation;
   const std::array<double, 3> normal{o[1] * o[5] - o[2] * o[4], o[2] * o[3] - o[0] * o[5],
                                      o[0] * o[4] - o[1] * o[3]};
@@ -837,6 +876,7 @@ Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds pa
   std::stable_sort(slices.begin(), slices.end(),
                    [](const Slice& a, const Slice& b) { return a.along_normal < b.along_normal; });
   double spacing_z = first.thickness > 0.0 ? first.thickness : 1.0;
+  std::string uneven, tilted;  // the first irregularity of each kind, as refused without resampling
   if (slices.size() > 1) {
     const std::size_t n = slices.size();
     for (std::size_t k = 0; k + 1 < n; ++k)
@@ -853,15 +893,14 @@ Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds pa
     std::nth_element(sorted.begin(),
                      sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
     const double median = sorted[sorted.size() / 2];
-    for (std::size_t k = 0; k + 1 < n; ++k)
+    for (std::size_t k = 0; k + 1 < n && uneven.empty(); ++k)
       if (std::abs(gaps[k] - median) > kUnevenTolerance * median)
-        throw Error(folder + ": the gap between " + slices[k].name + " and " + slices[k + 1].name +
-                    " is " + num(gaps[k]) + " mm, the series' median is " + num(median) +
-                    " mm (slices unevenly spaced by more than 1%: a slice "
-                    "missing or extra?)");
+        uneven = folder + ": the gap between " + slices[k].name + " and " + slices[k + 1].name +
+                 " is " + num(gaps[k]) + " mm, the series' median is " + num(median) +
+                 " mm (slices unevenly spaced by more than 1%: a slice missing or extra?)";
     spacing_z = (slices[n - 1].along_normal - slices[0].along_normal) / static_cast<double>(n - 1);
     // The positions must move along the normal (no gantry tilt / shear).
-    for (std::size_t k = 1; k < n; ++k) {
+    for (std::size_t k = 1; k < n && tilted.empty(); ++k) {
       std::array<double, 3> d{};
       for (int a = 0; a < 3; ++a) d[a] = slices[k].position[a] - slices[0].position[a];
       const double along = slices[k].along_normal - slices[0].along_normal;
@@ -871,10 +910,12 @@ Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds pa
         lateral2 += l * l;
       }
       if (std::sqrt(lateral2) > kUnevenTolerance * along + 1e-3)
-        throw Error(folder + ": " + slices[k].name + " is offset " + num(std::sqrt(lateral2)) +
-                    " mm sideways from the slice normal through " + slices[0].name +
-                    " (gantry tilt or sheared series: not supported)");
+        tilted = folder + ": " + slices[k].name + " is offset " + num(std::sqrt(lateral2)) +
+                 " mm sideways from the slice normal through " + slices[0].name +
+                 " (gantry tilt or sheared series: not supported)";
     }
+    if (!options.resample && !uneven.empty()) throw Error(uneven);
+    if (!options.resample && !tilted.empty()) throw Error(tilted);
   }
 
   // Step 4: values. physical = slope * raw + intercept; raw values are shifted
@@ -901,6 +942,9 @@ Volume load_dicom_series(const std::string& folder, std::chrono::milliseconds pa
   for (std::size_t z = 0; z < slices.size(); ++z)
     for (std::size_t k = 0; k < per_slice; ++k)
       v.data[z * per_slice + k] = static_cast<std::uint16_t>(raw_value(slices[z], k) - shift);
+  // Step 5: an irregular series onto a regular grid (rule 7).
+  if (!uneven.empty() || !tilted.empty())
+    resample(v, slices, static_cast<std::uint16_t>(lo - shift), !tilted.empty(), options);
   validate(v, folder);
   return v;
 }

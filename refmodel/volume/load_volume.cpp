@@ -71,7 +71,8 @@ bool is_nifti_name(const fs::path& p) {
 
 }  // namespace
 
-Volume load_volume(const std::string& source, const std::string& base_dir, const RawSpec* raw) {
+Volume load_volume(const std::string& source, const std::string& base_dir, const RawSpec* raw,
+                   const DicomOptions& dicom) {
   if (source.empty()) throw Error("volume.source is empty");
   if (source.starts_with(kPhantomPrefix)) return load_phantom(source);
 
@@ -82,7 +83,7 @@ Volume load_volume(const std::string& source, const std::string& base_dir, const
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status))
     throw Error(shown + ": no such file or folder (volume.source = \"" + source + "\")");
-  if (fs::is_directory(status)) return load_dicom_series(shown);
+  if (fs::is_directory(status)) return load_dicom_series(shown, dicom);
   if (is_nifti_name(path)) return load_nifti(shown);
   if (raw == nullptr)
     throw Error(shown +

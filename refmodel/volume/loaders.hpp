@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 
 #include "refmodel/volume/volume.hpp"
@@ -40,10 +41,16 @@ Volume load_raw(const std::string& path, const RawSpec& spec);
 // converted to Hounsfield units through Rescale Slope/Intercept. GDCM parses
 // each file in a child process (refmodel/volume/child_process.hpp): if it
 // aborts, crashes or takes longer than `parse_timeout`, the Error names the
-// file and the cause.
+// file and the cause. A gantry-tilted series or one with uneven gaps is
+// resampled onto a regular grid (docs/volumes.md, "DICOM series", rule 7) and
+// one line saying so goes to `notices`; with `resample` false it is refused.
 inline constexpr std::chrono::milliseconds kDicomParseTimeout{30000};
-Volume load_dicom_series(const std::string& folder,
-                         std::chrono::milliseconds parse_timeout = kDicomParseTimeout);
+struct DicomOptions {
+  bool resample = true;  // the scene's volume.resample
+  std::chrono::milliseconds parse_timeout = kDicomParseTimeout;
+  std::ostream* notices = nullptr;  // the resampling notice; nullptr = std::cerr
+};
+Volume load_dicom_series(const std::string& folder, const DicomOptions& options = {});
 
 // Built-in phantoms, generated in code: "shepp-logan", "shells", "tube", "box".
 // `size` is the edge length in voxels (cubic grid). `aa` > 1 gives partial
@@ -53,8 +60,9 @@ Volume load_dicom_series(const std::string& folder,
 Volume make_phantom(const std::string& name, int size, int aa = 1);
 
 // Resolves a scene's `volume.source`: "phantom:NAME[?size=N]", a NIfTI path, a
-// raw path (needs `raw`), or a folder of DICOM slices. `base_dir` resolves
-// relative paths (the scene file's folder).
-Volume load_volume(const std::string& source, const std::string& base_dir, const RawSpec* raw);
+// raw path (needs `raw`), or a folder of DICOM slices (read with `dicom`).
+// `base_dir` resolves relative paths (the scene file's folder).
+Volume load_volume(const std::string& source, const std::string& base_dir, const RawSpec* raw,
+                   const DicomOptions& dicom = {});
 
 }  // namespace voxcast::ref

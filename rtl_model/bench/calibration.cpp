@@ -106,8 +106,9 @@ CalibrationResult run_calibration(const CalibrationPoint& point, const RtlConfig
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const ref::Scene& s = point.scene;
-  const ref::Volume volume = ref::load_volume(s.volume.source, s.base_dir,
-                                              s.volume.raw ? &*s.volume.raw : nullptr);
+  const ref::Volume volume =
+      ref::load_volume(s.volume.source, s.base_dir, s.volume.raw ? &*s.volume.raw : nullptr,
+                       {.resample = s.volume.resample});
   const ref::GradientField gradients = ref::compute_gradients(volume, s.volume.gradient);
   const ref::RenderInputs in = ref::make_render_inputs(s, volume, gradients, s.camera.pose);
   const bittrue::FrameSetup setup = bittrue::make_frame_setup(s.precision, s, in);

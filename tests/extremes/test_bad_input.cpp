@@ -8,10 +8,12 @@
 #include <nifti/nifti1.h>
 #include <zlib.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 
 #include "extremes.hpp"
+#include "tests/common/dicom_bytes.hpp"
 #include "tests/common/nifti_bytes.hpp"
 
 namespace voxcast::test {
@@ -353,6 +355,38 @@ TEST(Extremes, CliTomlUnknownKey) {
         "--engine bittrue --set precision.alpha_bitz=3"},
        {t, "voxcast: " + t.string() + ":", "precision.profile = \"vizard3\" is not one of",
         "--engine hls"}});
+}
+
+// --- DICOM ----------------------------------------------------------------------------
+
+// A gantry-tilted series (8x8 slices, the plane turned 20 degrees about x, positions
+// 2.5 mm apart along z): resampled with one notice on stderr (docs/volumes.md, rule
+// 7), or refused as before with volume.resample = false.
+TEST(Extremes, CliTiltedDicomSeries) {
+  const fs::path dir = scratch_dir();
+  const fs::path series = dir / "tilted";
+  fs::create_directories(series);
+  const double tilt = 20.0 * std::acos(-1.0) / 180.0;
+  for (int k = 0; k < 6; ++k) {
+    DicomSlice slice;
+    slice.columns = slice.rows = 8;
+    slice.position = {-3.5, -3.5, 2.5 * k};
+    slice.orientation = {1.0, 0.0, 0.0, 0.0, std::cos(tilt), std::sin(tilt)};
+    slice.instance = k + 1;
+    for (int p = 0; p < 64; ++p) slice.pixels.push_back(static_cast<std::int16_t>(10 * k + p));
+    write_bytes(series / ("IM" + std::to_string(k)), dicom_slice_bytes(slice));
+  }
+  const Command on = voxcast("render " + scene_for(dir, "source = \"tilted\"", "on.toml").string() +
+                             " -o " + (dir / "on.png").string());
+  EXPECT_EQ(on.status, 0) << on.err;
+  const std::string notice =
+      "voxcast: " + series.string() +
+      ": gantry tilt 20.0 deg resampled onto 8x8x6 at 1x1x2.349 mm (linear)\n";
+  EXPECT_NE(on.err.find(notice), std::string::npos) << on.err;
+  EXPECT_EQ(on.err.find(notice), on.err.rfind(notice)) << "said more than once: " << on.err;
+  expect_one_line_errors({{scene_for(dir, "source = \"tilted\"\nresample = false", "off.toml"),
+                           "voxcast: " + series.string() + ": IM1 is offset ",
+                           "(gantry tilt or sheared series: not supported)", ""}});
 }
 
 }  // namespace

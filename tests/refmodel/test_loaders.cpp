@@ -20,17 +20,20 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "refmodel/error.hpp"
 #include "refmodel/volume/loaders.hpp"
+#include "tests/common/dicom_bytes.hpp"
 #include "tests/common/error_of.hpp"
 #include "tests/common/nifti_bytes.hpp"
 
@@ -658,9 +661,32 @@ TEST(DicomLoader, DuplicateMissingAndForeignSlices) {
     ScratchDir dir;
     for (const fs::path& s : slices)
       if (s.filename() != "I150") fs::copy_file(s, dir / s.filename());
-    const std::string msg = error_of([&] { load_dicom_series(dir.path().string()); });
+    const std::string msg =
+        error_of([&] { load_dicom_series(dir.path().string(), {.resample = false}); });
     EXPECT_CONTAINS(msg, "the gap between I140 and I160 is 10 mm");
     EXPECT_CONTAINS(msg, "unevenly spaced");
+    // Resampled by default (rule 7): the whole series' grid; the planes with a
+    // slice are that slice, I150's plane the mean of I140 and I160 rounded half up.
+    std::ostringstream notices;
+    const Volume v = load_dicom_series(dir.path().string(), {.notices = &notices});
+    EXPECT_EQ(notices.str(), "voxcast: " + dir.path().string() +
+                                 ": 1 uneven gap resampled onto 512x512x28 at 0.4512x0.4512x5 mm "
+                                 "(linear)\n");
+    const Volume whole = load_dicom_series(kCtFolder.string());
+    ASSERT_EQ(v.dims, whole.dims);
+    EXPECT_NEAR(v.spacing.z, whole.spacing.z, 1e-9);
+    EXPECT_EQ(v.intercept, whole.intercept);
+    const std::size_t per_slice = 512 * 512;
+    std::size_t differ = 0;
+    for (std::size_t z = 0; z < 28; ++z)
+      for (std::size_t k = 0; k < per_slice; ++k) {
+        const std::size_t at = z * per_slice + k;
+        const unsigned want =
+            z == 14 ? (whole.data[at - per_slice] + whole.data[at + per_slice] + 1u) / 2u
+                    : whole.data[at];
+        differ += v.data[at] != want;
+      }
+    EXPECT_EQ(differ, 0u);
   }
   {
     // A second series: one copy whose SeriesInstanceUID (0020,000E) differs in
@@ -688,6 +714,325 @@ TEST(DicomLoader, DuplicateMissingAndForeignSlices) {
     fs::resize_file(dir / "I200", 2000);
     const std::string msg = error_of([&] { load_dicom_series(dir.path().string()); });
     EXPECT_CONTAINS(msg, "I200");
+  }
+}
+
+// The CT series loads exactly as its files hold it (rule 5: regular, so nothing
+// is resampled and nothing is said): voxel z*512*512 + k is the low 12 bits
+// (BitsStored) of pixel word k of the z-th file in position order.
+TEST(DicomLoader, CtSkullPhantomIsNotResampled) {
+  SKIP_WITHOUT_CT_DATA();
+  std::ostringstream notices;
+  const Volume v = load_dicom_series(kCtFolder.string(), {.notices = &notices});
+  EXPECT_EQ(notices.str(), "");
+  ASSERT_EQ(v.dims, (std::array<int, 3>{512, 512, 28}));
+  const std::size_t per_slice = 512 * 512;
+  const auto slices = ct_slices();
+  for (std::size_t z = 0; z < slices.size(); ++z) {
+    std::ifstream in(slices[z], std::ios::binary);
+    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), {});
+    // (7FE0,0010) OW, explicit VR little endian: tag, VR, 2 reserved, 32-bit length.
+    const unsigned char tag[] = {0xE0, 0x7F, 0x10, 0x00, 'O', 'W'};
+    const auto at = std::find_end(bytes.begin(), bytes.end(), std::begin(tag), std::end(tag));
+    ASSERT_NE(at, bytes.end()) << slices[z];
+    const auto data = at + 12;
+    ASSERT_EQ(bytes.end() - data, static_cast<std::ptrdiff_t>(2 * per_slice)) << slices[z];
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < per_slice; ++k) {
+      const unsigned word = static_cast<unsigned>(data[static_cast<std::ptrdiff_t>(2 * k)]) |
+                            static_cast<unsigned>(data[static_cast<std::ptrdiff_t>(2 * k + 1)])
+                                << 8;
+      differ += v.data[z * per_slice + k] != (word & 0x0FFFu);
+    }
+    EXPECT_EQ(differ, 0u) << slices[z];
+  }
+}
+
+// --- DICOM: gantry tilt and uneven slices (docs/volumes.md, rule 7) ----------------------
+
+// A series of square slices: the image plane turned by `tilt_deg` about the
+// row (x) axis, positions `step` mm apart along `table`.
+struct SynthSeries {
+  int size = 64;       // columns = rows
+  double pixel = 1.0;  // mm
+  std::array<double, 6> orientation{};
+  std::vector<std::array<double, 3>> positions;
+  std::array<double, 3> row() const { return {orientation[0], orientation[1], orientation[2]}; }
+  std::array<double, 3> column() const { return {orientation[3], orientation[4], orientation[5]}; }
+  std::array<double, 3> normal() const {
+    const auto r = row(), c = column();
+    return {r[1] * c[2] - r[2] * c[1], r[2] * c[0] - r[0] * c[2], r[0] * c[1] - r[1] * c[0]};
+  }
+};
+
+double dot(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+SynthSeries synth_series(double tilt_deg, std::array<double, 3> table, double step, int count,
+                         int size) {
+  const double t = tilt_deg * std::acos(-1.0) / 180.0;
+  SynthSeries s;
+  s.size = size;
+  s.orientation = {1.0, 0.0, 0.0, 0.0, std::cos(t), std::sin(t)};
+  const double len = std::sqrt(dot(table, table));
+  const double half = (size - 1) / 2.0;
+  for (int k = 0; k < count; ++k)
+    s.positions.push_back({-half + k * step * table[0] / len, -half + k * step * table[1] / len,
+                           k * step * table[2] / len});
+  return s;
+}
+
+struct Ball {
+  std::array<double, 3> centre{};  // patient mm
+  double radius = 0.0;
+};
+
+// Slice k's pixel (i, j) at position + i * pixel * row + j * pixel * column:
+// +1000 inside the ball, -1000 outside, a linear edge one pixel wide.
+void write_series(const fs::path& dir, const SynthSeries& s, const Ball& ball) {
+  const auto r = s.row(), c = s.column();
+  for (std::size_t k = 0; k < s.positions.size(); ++k) {
+    test::DicomSlice slice;
+    slice.columns = slice.rows = s.size;
+    slice.position = s.positions[k];
+    slice.orientation = s.orientation;
+    slice.pixel_spacing = {s.pixel, s.pixel};
+    slice.instance = static_cast<int>(k) + 1;
+    for (int j = 0; j < s.size; ++j)
+      for (int i = 0; i < s.size; ++i) {
+        double d2 = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double x = s.positions[k][static_cast<std::size_t>(a)] +
+                           i * s.pixel * r[static_cast<std::size_t>(a)] +
+                           j * s.pixel * c[static_cast<std::size_t>(a)];
+          d2 += (x - ball.centre[static_cast<std::size_t>(a)]) *
+                (x - ball.centre[static_cast<std::size_t>(a)]);
+        }
+        const double inside = std::clamp(ball.radius - std::sqrt(d2) + 0.5, 0.0, 1.0);
+        slice.pixels.push_back(static_cast<std::int16_t>(std::lround(-1000.0 + 2000.0 * inside)));
+      }
+    write_bytes(dir / numbered("IM", 100 + k), test::dicom_slice_bytes(slice));
+  }
+}
+
+// The ball's centre (voxel indices) and radius along each axis (mm), from the
+// moments of the weight (value - min) / (max - min): a uniform ball's variance
+// along any axis is radius^2 / 5. `shear` is the correlation of y with z and
+// of x with z: 0 for a ball, tan/sqrt(1 + tan^2) of the tilt if left sheared.
+struct BallFit {
+  std::array<double, 3> centre{}, radius{};
+  double shear = 0.0;
+};
+
+BallFit fit_ball(const Volume& v) {
+  const auto [lo, hi] = std::minmax_element(v.data.begin(), v.data.end());
+  double w_sum = 0.0;
+  std::array<double, 3> m1{}, m2{};
+  double yz = 0.0, xz = 0.0;
+  std::size_t n = 0;
+  for (int z = 0; z < v.dims[2]; ++z)
+    for (int y = 0; y < v.dims[1]; ++y)
+      for (int x = 0; x < v.dims[0]; ++x) {
+        const double w = static_cast<double>(v.data[n++] - *lo) / (*hi - *lo);
+        const std::array<double, 3> p{static_cast<double>(x), static_cast<double>(y),
+                                      static_cast<double>(z)};
+        w_sum += w;
+        for (std::size_t a = 0; a < 3; ++a) {
+          m1[a] += w * p[a];
+          m2[a] += w * p[a] * p[a];
+        }
+        yz += w * p[1] * p[2];
+        xz += w * p[0] * p[2];
+      }
+  BallFit f;
+  std::array<double, 3> var{};
+  const std::array<double, 3> spacing{v.spacing.x, v.spacing.y, v.spacing.z};
+  for (std::size_t a = 0; a < 3; ++a) {
+    f.centre[a] = m1[a] / w_sum;
+    var[a] = m2[a] / w_sum - f.centre[a] * f.centre[a];
+    f.radius[a] = std::sqrt(5.0 * var[a]) * spacing[a];
+  }
+  const double cyz = yz / w_sum - f.centre[1] * f.centre[2];
+  const double cxz = xz / w_sum - f.centre[0] * f.centre[2];
+  f.shear = std::max(std::abs(cyz) / std::sqrt(var[1] * var[2]),
+                     std::abs(cxz) / std::sqrt(var[0] * var[2]));
+  return f;
+}
+
+// Where the ball's centre must be on the resampled grid (rule 7): z from the
+// first slice along the normal in steps of the median gap, in-plane the grid
+// of the stack's middle (half way between the first and last slices' origins).
+std::array<double, 3> expected_centre(const SynthSeries& s, const Ball& ball, double spacing_z) {
+  const auto r = s.row(), c = s.column(), nrm = s.normal();
+  const auto& first = s.positions.front();
+  const auto& last = s.positions.back();
+  const double u0 = (dot(first, r) + dot(last, r)) / 2, v0 = (dot(first, c) + dot(last, c)) / 2;
+  return {(dot(ball.centre, r) - u0) / s.pixel, (dot(ball.centre, c) - v0) / s.pixel,
+          (dot(ball.centre, nrm) - dot(first, nrm)) / spacing_z};
+}
+
+void expect_round_ball(const Volume& v, const SynthSeries& s, const Ball& ball) {
+  const BallFit f = fit_ball(v);
+  const auto truth = expected_centre(s, ball, v.spacing.z);
+  const std::array<double, 3> spacing{v.spacing.x, v.spacing.y, v.spacing.z};
+  for (std::size_t a = 0; a < 3; ++a) {
+    EXPECT_NEAR(f.centre[a], truth[a], 1.0) << "centre, axis " << a;
+    EXPECT_NEAR(f.radius[a], ball.radius, spacing[a]) << "radius, axis " << a;
+  }
+  EXPECT_LT(f.shear, 0.05);
+}
+
+struct TiltCase {
+  const char* name;
+  double tilt_deg;
+  std::array<double, 3> table;  // the slice positions' direction
+  int slices;
+};
+
+std::ostream& operator<<(std::ostream& os, const TiltCase& c) {
+  return os << c.name << ": plane tilted " << c.tilt_deg << " deg, table (" << c.table[0] << ", "
+            << c.table[1] << ", " << c.table[2] << "), " << c.slices << " slices";
+}
+
+class DicomTilt : public testing::TestWithParam<TiltCase> {};
+
+TEST_P(DicomTilt, BallStaysRound) {
+  const TiltCase& c = GetParam();
+  const SynthSeries s = synth_series(c.tilt_deg, c.table, 2.5, c.slices, 64);
+  const Ball ball{{0.3, -2.0, 35.0}, 12.0};
+  ScratchDir dir;
+  write_series(dir.path(), s, ball);
+  std::ostringstream notices;
+  const Volume v = load_dicom_series(dir.path().string(), {.notices = &notices});
+  // The median gap along the normal: the step's component along it.
+  const auto nrm = s.normal();
+  const double gap = 2.5 * dot(c.table, nrm) / std::sqrt(dot(c.table, c.table));
+  EXPECT_EQ(v.dims, (std::array<int, 3>{64, 64, c.slices}));
+  EXPECT_EQ(v.spacing.x, 1.0);
+  EXPECT_EQ(v.spacing.y, 1.0);
+  EXPECT_NEAR(v.spacing.z, gap, 1e-6);
+  expect_round_ball(v, s, ball);
+  // The tilt between the positions' line and the normal, as the notice gives it.
+  const double tilt =
+      std::acos(dot(c.table, nrm) / std::sqrt(dot(c.table, c.table))) * 180.0 / std::acos(-1.0);
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "voxcast: %s: gantry tilt %.1f deg resampled onto 64x64x%d at 1x1x%.4g mm "
+                "(linear)\n",
+                dir.path().string().c_str(), tilt, c.slices, gap);
+  EXPECT_EQ(notices.str(), line);
+}
+
+INSTANTIATE_TEST_SUITE_P(DicomLoader, DicomTilt,
+                         testing::Values(TiltCase{"tilt20", 20.0, {0.0, 0.0, 1.0}, 40},
+                                         TiltCase{
+                                             "plane12_table_oblique", 12.0, {0.2, 0.0, 1.0}, 36}),
+                         [](const testing::TestParamInfo<TiltCase>& i) { return i.param.name; });
+
+// Both at once: a tilted series with one slice missing keeps its slice count.
+TEST(DicomLoader, TiltAndMissingSliceTogether) {
+  const SynthSeries s = synth_series(20.0, {0.0, 0.0, 1.0}, 2.5, 40, 64);
+  const Ball ball{{0.3, -2.0, 35.0}, 12.0};
+  ScratchDir dir;
+  write_series(dir.path(), s, ball);
+  fs::remove(dir / "IM110");  // inside the ball
+  std::ostringstream notices;
+  const Volume v = load_dicom_series(dir.path().string(), {.notices = &notices});
+  EXPECT_EQ(v.dims, (std::array<int, 3>{64, 64, 40}));
+  expect_round_ball(v, s, ball);
+  EXPECT_EQ(notices.str(), "voxcast: " + dir.path().string() +
+                               ": gantry tilt 20.0 deg and 1 uneven gap resampled onto 64x64x40 "
+                               "at 1x1x2.349 mm (linear)\n");
+}
+
+// Without the gantry correction the same series is refused as before.
+TEST(DicomLoader, TiltRefusedWithoutResampling) {
+  const SynthSeries s = synth_series(20.0, {0.0, 0.0, 1.0}, 2.5, 8, 16);
+  ScratchDir dir;
+  write_series(dir.path(), s, Ball{{0.0, 0.0, 8.0}, 4.0});
+  const std::string msg =
+      error_of([&] { load_dicom_series(dir.path().string(), {.resample = false}); });
+  EXPECT_CONTAINS(msg, dir.path().string() + ": IM101 is offset ");
+  EXPECT_CONTAINS(msg,
+                  "mm sideways from the slice normal through IM100 (gantry tilt or sheared "
+                  "series: not supported)");
+  // The option reaches the loader through load_volume (the scene's volume.resample).
+  EXPECT_EQ(error_of([&] { load_volume(dir.path().string(), "", nullptr, {.resample = false}); }),
+            msg);
+}
+
+// One slice missing from an even axial series: the grid keeps the series'
+// spacing and slice count; the planes that have a slice are that slice, bit
+// for bit, and the missing one is the mean of its neighbours, rounded half up.
+TEST(DicomLoader, MissingSliceIsInterpolated) {
+  const SynthSeries s = synth_series(0.0, {0.0, 0.0, 1.0}, 2.0, 30, 48);
+  const Ball ball{{0.4, -0.3, 25.0}, 10.0};
+  ScratchDir full, gap;
+  write_series(full.path(), s, ball);
+  write_series(gap.path(), s, ball);
+  fs::remove(gap / "IM112");
+  std::ostringstream notices;
+  const Volume a = load_dicom_series(full.path().string(), {.notices = &notices});
+  EXPECT_EQ(notices.str(), "");  // regular: loaded as stored
+  const Volume b = load_dicom_series(gap.path().string(), {.notices = &notices});
+  EXPECT_EQ(notices.str(), "voxcast: " + gap.path().string() +
+                               ": 1 uneven gap resampled onto 48x48x30 at 1x1x2 mm (linear)\n");
+  ASSERT_EQ(b.dims, a.dims);
+  EXPECT_EQ(b.spacing, a.spacing);
+  EXPECT_EQ(b.slope, a.slope);
+  EXPECT_EQ(b.intercept, a.intercept);
+  EXPECT_EQ(b.bits, a.bits);
+  const std::size_t per_slice = 48 * 48;
+  std::size_t differ = 0;
+  for (std::size_t z = 0; z < 30; ++z)
+    for (std::size_t k = 0; k < per_slice; ++k) {
+      const std::size_t at = z * per_slice + k;
+      const unsigned want =
+          z == 12 ? (a.data[at - per_slice] + a.data[at + per_slice] + 1u) / 2u : a.data[at];
+      differ += b.data[at] != want;
+    }
+  EXPECT_EQ(differ, 0u);
+  expect_round_ball(b, s, ball);
+  // Refused as before without resampling.
+  const std::string msg =
+      error_of([&] { load_dicom_series(gap.path().string(), {.resample = false}); });
+  EXPECT_CONTAINS(msg, gap.path().string() +
+                           ": the gap between IM111 and IM113 is 4 mm, the "
+                           "series' median is 2 mm (slices unevenly spaced");
+}
+
+// Degenerate series: one error naming the folder and the reason.
+TEST(DicomLoader, DegenerateTiltedSeriesAreRefused) {
+  {
+    ScratchDir dir;
+    write_series(dir.path(), synth_series(50.0, {0.0, 0.0, 1.0}, 2.5, 6, 16), Ball{});
+    const std::string msg = error_of([&] { load_dicom_series(dir.path().string()); });
+    EXPECT_CONTAINS(msg, dir.path().string() +
+                             ": the slice positions lean 50.0 deg from "
+                             "ImageOrientationPatient's normal (IM100 to IM105)");
+    EXPECT_CONTAINS(msg, "more than 45 deg");
+  }
+  {
+    // Slices stepping sideways back and forth: not one tilt.
+    SynthSeries s = synth_series(0.0, {0.0, 0.0, 1.0}, 2.5, 5, 16);
+    s.positions[1][0] += 3.0;
+    ScratchDir dir;
+    write_series(dir.path(), s, Ball{});
+    const std::string msg = error_of([&] { load_dicom_series(dir.path().string()); });
+    EXPECT_CONTAINS(msg, dir.path().string() +
+                             ": IM101 is offset 3.0 pixels sideways from the "
+                             "line of slice positions through IM100 and IM104");
+  }
+  {
+    // Two slices at one position of a tilted series.
+    SynthSeries s = synth_series(15.0, {0.0, 0.0, 1.0}, 2.5, 5, 16);
+    s.positions[3] = s.positions[2];
+    ScratchDir dir;
+    write_series(dir.path(), s, Ball{});
+    const std::string msg = error_of([&] { load_dicom_series(dir.path().string()); });
+    EXPECT_CONTAINS(msg, dir.path().string() + ": IM102 and IM103 are both at slice position");
+    EXPECT_CONTAINS(msg, "(duplicate slice)");
   }
 }
 

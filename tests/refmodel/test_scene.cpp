@@ -47,6 +47,15 @@ TEST(Scene, MinimalSceneTakesTheDocumentedDefaults) {
   EXPECT_EQ(s.lights[0].type, ref::LightType::Headlight);
 }
 
+TEST(Scene, VolumeResampleIsABooleanDefaultingToTrue) {
+  EXPECT_TRUE(ref::parse_scene(kMinimal, "test.toml", ".").volume.resample);
+  const ref::Scene off = ref::parse_scene(kMinimal, "test.toml", ".", {"volume.resample=false"});
+  EXPECT_FALSE(off.volume.resample);
+  EXPECT_FALSE(ref::parse_scene(ref::scene_to_toml(off), "written", ".").volume.resample);
+  EXPECT_EQ(error_of(kMinimal, {"volume.resample=1"}),
+            "--set volume.resample=1: volume.resample must be true or false, not integer");
+}
+
 TEST(Scene, UnknownKeyNamesFileLineAndSuggestion) {
   const std::string e = error_of(std::string(kMinimal) + "\n[render]\noversmapling = 2\n");
   EXPECT_EQ(e, "test.toml:13: unknown key render.oversmapling (did you mean render.oversampling?)");
