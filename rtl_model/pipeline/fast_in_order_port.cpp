@@ -114,6 +114,7 @@ void FastInOrderPort::issue(Command cmd, std::uint32_t bank, std::uint32_t row, 
   last_command_ = now;
   ++ds_.commands;
   ++cs_.command_cycles;
+  ++activity_;
   if (observer_) observer_->on_command(cmd, sdram::Address{bank, row, 0}, now);
 }
 
@@ -183,6 +184,7 @@ void FastInOrderPort::retire(Cycle now) {
     --flight_count_;
     completions_.push(c);
     ++cs_.completed;
+    ++activity_;
     cs_.bytes += burst_bytes;
     cs_.latency_sum += c.latency();
     cs_.latency_max = std::max(cs_.latency_max, c.latency());

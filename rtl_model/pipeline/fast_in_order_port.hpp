@@ -38,7 +38,6 @@ class FastInOrderPort final : public MemoryPort {
   sim::Fifo<sdram::Completion>& completions() override { return completions_; }
   const sim::Fifo<sdram::Completion>& completions() const override { return completions_; }
   void popped(sim::Cycle now) override;
-  sim::Cycle wake() const override { return wake_; }
   void set_observer(sdram::CommandObserver* o) override { observer_ = o; }
 
   std::size_t pending() const override { return pending_count_; }
@@ -78,7 +77,6 @@ class FastInOrderPort final : public MemoryPort {
   int postpone_limit_ = 0;
   bool refreshing_ = false;
   sim::Cycle last_command_ = -1;
-  sim::Cycle wake_ = 0;
 
   std::vector<sdram::PendingRequest> pending_;  // ring, oldest first
   std::size_t pending_head_ = 0, pending_count_ = 0;

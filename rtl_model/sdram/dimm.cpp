@@ -304,8 +304,13 @@ bool Dimm::check_state(Command cmd, const Address& a, std::string* why) const {
 
 // ---- Issue -------------------------------------------------------------------------------
 Issued Dimm::issue(Command cmd, const Address& a, Cycle now) {
-  std::string why;
-  if (!check(cmd, a, now, &why)) throw Error(why);
+  // The message is built only for a rejected command (check() again with a
+  // string): a string per command cost more than the check.
+  if (!check(cmd, a, now, nullptr)) {
+    std::string why;
+    check(cmd, a, now, &why);
+    throw Error(why);
+  }
   Issued issued;
   issued.command = cmd;
   issued.address = a;
