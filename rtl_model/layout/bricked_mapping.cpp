@@ -21,6 +21,9 @@ BrickedMapping::BrickedMapping(const WordGrid& grid, const sdram::Geometry& geom
     space *= std::uint64_t{bricks_[k]} << shift_[k];
   }
   check_fits(name(), space, geometry);
+  pow2_ = std::has_single_bit(bricks_[0]) && std::has_single_bit(bricks_[1]);
+  shift_x_ = std::countr_zero(bricks_[0]);
+  shift_xy_ = shift_x_ + std::countr_zero(bricks_[1]);
 }
 
 std::uint64_t BrickedMapping::index(const WordCoord& c) const {
@@ -41,8 +44,10 @@ std::uint64_t BrickedMapping::index(const WordCoord& c) const {
   const int bb = std::countr_zero(g.banks);
   const std::uint64_t row = i >> (cb + bb);
   const std::uint64_t first = (row << (cb + bb)) >> brick_bits;
-  const std::uint64_t by = (first / bricks_[0]) % bricks_[1];
-  const std::uint64_t bz = first / (std::uint64_t{bricks_[0]} * bricks_[1]);
+  const std::uint64_t by = pow2_ ? (first >> shift_x_) & (bricks_[1] - 1u)
+                                 : (first / bricks_[0]) % bricks_[1];
+  const std::uint64_t bz =
+      pow2_ ? first >> shift_xy_ : first / (std::uint64_t{bricks_[0]} * bricks_[1]);
   const std::uint64_t mask = g.banks - 1u;
   const std::uint64_t bank = (((i >> cb) & mask) + by + bz) & mask;
   return (i & ~(mask << cb)) | (bank << cb);

@@ -33,6 +33,10 @@ class BrickedMapping final : public AddressMapping {
  private:
   std::array<std::uint32_t, 3> shift_{};  // log2 of the brick edges
   std::array<std::uint32_t, 3> bricks_{};  // bricks per axis (rounded up)
+  // The swizzle's divisions by bricks_[0] and bricks_[0] * bricks_[1] as
+  // shifts when those are powers of two (every 2^n volume); 0: divide.
+  int shift_x_ = 0, shift_xy_ = 0;
+  bool pow2_ = false;
   bool swizzle_ = false;
 };
 

@@ -10,9 +10,7 @@ namespace voxcast::rtl::pipeline {
 
 using sdram::Command;
 using sdram::RowOutcome;
-using sdram::Scope;
 using sdram::index_of;
-using sdram::is_rank_command;
 using sim::Cycle;
 
 namespace {
@@ -24,17 +22,11 @@ FastInOrderPort::FastInOrderPort(const sdram::DimmConfig& dimm,
                                  const sdram::ControllerConfig& controller)
     : t_(sdram::Dimm(dimm).timing()),  // the Dimm validates the configuration
       geometry_(dimm.geometry),
+      not_before_(sdram::ConstraintTable(t_), dimm.geometry.banks, 0),
       banks_(dimm.geometry.banks),
       postpone_limit_(dimm.refresh_postpone_limit),
       completions_("sdram.completions", controller.return_depth) {
   if (controller.queue_depth == 0) throw Error("Controller: request queue depth 0");
-  // Compile the one constraint table by previous command.
-  const sdram::ConstraintTable table(t_);
-  for (const sdram::Constraint& c : table.rows())
-    after_[index_of(c.prev)].push_back(Row{c.next, c.scope, c.cycles});
-  nb_.resize(geometry_.banks);
-  for (auto& b : nb_) b.fill(0);
-  nb_rank_.fill(0);
   pending_.resize(controller.queue_depth);
   flight_.resize(controller.return_depth + 1);
   ds_.banks.resize(geometry_.banks);
@@ -66,7 +58,7 @@ void FastInOrderPort::popped(Cycle now) {
 
 // ---- Timing: the compiled table --------------------------------------------------------------
 Cycle FastInOrderPort::earliest(Command cmd, std::uint32_t bank) const {
-  return is_rank_command(cmd) ? nb_rank_[index_of(cmd)] : nb_[bank][index_of(cmd)];
+  return not_before_.at(cmd, bank);
 }
 
 bool FastInOrderPort::all_idle() const {
@@ -81,26 +73,11 @@ Command FastInOrderPort::next_command(const sdram::Address& a) const {
   return b.row == a.row ? Command::kRd : Command::kPre;
 }
 
-// Dimm::apply's state and statistics, and the table's rows raised (Dimm::gate's
-// scopes: a rank command on either side binds every bank; a rank command
-// after a bank command sees every bank as "other").
+// Dimm::apply's state and statistics, and the table's rows raised (NotBefore).
 void FastInOrderPort::issue(Command cmd, std::uint32_t bank, std::uint32_t row, Cycle now) {
   if (now <= last_command_) fail("two commands in one cycle", now);
   if (earliest(cmd, bank) > now) fail("command before its earliest cycle", now);
-  const bool rank = is_rank_command(cmd);
-  for (const Row& r : after_[index_of(cmd)]) {
-    const Cycle at = now + r.cycles;
-    const std::size_t n = index_of(r.next);
-    if (is_rank_command(r.next)) {
-      if (rank || r.scope != Scope::kSameBank) nb_rank_[n] = std::max(nb_rank_[n], at);
-    } else if (!rank && r.scope == Scope::kSameBank) {
-      nb_[bank][n] = std::max(nb_[bank][n], at);
-    } else {
-      const bool skip_own = !rank && r.scope == Scope::kOtherBank;
-      for (std::uint32_t b = 0; b < geometry_.banks; ++b)
-        if (!(skip_own && b == bank)) nb_[b][n] = std::max(nb_[b][n], at);
-    }
-  }
+  not_before_.raise(cmd, bank, now);
   auto close = [&](std::uint32_t b) {
     ds_.banks[b].open_cycles += now - banks_[b].activated_at;
     ++ds_.banks[b].precharges;
@@ -137,6 +114,7 @@ void FastInOrderPort::issue(Command cmd, std::uint32_t bank, std::uint32_t row, 
   last_command_ = now;
   ++ds_.commands;
   ++cs_.command_cycles;
+  ++activity_;
   if (observer_) observer_->on_command(cmd, sdram::Address{bank, row, 0}, now);
 }
 
@@ -206,6 +184,7 @@ void FastInOrderPort::retire(Cycle now) {
     --flight_count_;
     completions_.push(c);
     ++cs_.completed;
+    ++activity_;
     cs_.bytes += burst_bytes;
     cs_.latency_sum += c.latency();
     cs_.latency_max = std::max(cs_.latency_max, c.latency());

@@ -6,10 +6,8 @@
 // sequence, else the oldest request's next command as soon as it is legal,
 // then retire), and the same statistics (ControllerStats, DimmStats) except
 // the tick counters. What makes it fast:
-//   - Timing from the same ConstraintTable, compiled: when a command issues,
-//     every row (prev = that command -> next, scope, delay) raises a
-//     "not before" cycle per bank and next command, so the earliest cycle of
-//     a command is one look-up (the Dimm scans the table per query).
+//   - Timing from the same ConstraintTable, compiled (sdram/not_before.hpp,
+//     as the Dimm's): the earliest cycle of a command is one look-up.
 //   - Ticks only at cycles where something can happen (wake()): a REF due,
 //     an access's last data beat, the oldest request's next command legal,
 //     a new oldest request, a freed return slot.
@@ -24,6 +22,7 @@
 #include <vector>
 
 #include "rtl_model/pipeline/memory_port.hpp"
+#include "rtl_model/sdram/not_before.hpp"
 #include "rtl_model/sdram/timing.hpp"
 
 namespace voxcast::rtl::pipeline {
@@ -39,7 +38,6 @@ class FastInOrderPort final : public MemoryPort {
   sim::Fifo<sdram::Completion>& completions() override { return completions_; }
   const sim::Fifo<sdram::Completion>& completions() const override { return completions_; }
   void popped(sim::Cycle now) override;
-  sim::Cycle wake() const override { return wake_; }
   void set_observer(sdram::CommandObserver* o) override { observer_ = o; }
 
   std::size_t pending() const override { return pending_count_; }
@@ -57,11 +55,6 @@ class FastInOrderPort final : public MemoryPort {
     std::uint32_t row = 0;
     sim::Cycle activated_at = 0;
   };
-  struct Row {  // one compiled constraint: prev -> next within scope, delay
-    sdram::Command next;
-    sdram::Scope scope;
-    sim::Cycle cycles;
-  };
 
   bool step_refresh(sim::Cycle now);
   void schedule(sim::Cycle now);
@@ -78,15 +71,12 @@ class FastInOrderPort final : public MemoryPort {
 
   sdram::TimingCycles t_;
   sdram::Geometry geometry_;
-  std::array<std::vector<Row>, sdram::kCommandCount> after_;     // by previous command
-  std::vector<std::array<sim::Cycle, sdram::kCommandCount>> nb_;  // [bank][command]: not before
-  std::array<sim::Cycle, sdram::kCommandCount> nb_rank_{};        // PREA, REF
+  sdram::NotBefore not_before_;  // the compiled table (a command's earliest cycle)
   std::vector<Bank> banks_;
   std::int64_t refreshes_ = 0;
   int postpone_limit_ = 0;
   bool refreshing_ = false;
   sim::Cycle last_command_ = -1;
-  sim::Cycle wake_ = 0;
 
   std::vector<sdram::PendingRequest> pending_;  // ring, oldest first
   std::size_t pending_head_ = 0, pending_count_ = 0;

@@ -17,8 +17,13 @@
 //     (sdram/controller.hpp), filling completions();
 //   - the consumer pops completions() after tick(now) and calls popped(now);
 //   - wake() is a cycle before which tick() would change nothing but the
-//     controller's tick counters: the pipeline may skip ahead to it
-//     (a port that cannot tell returns 0).
+//     controller's tick counters: the pipeline may skip ahead to it, and
+//     need not call tick() before it (a port that cannot tell keeps 0).
+//   - activity() counts the commands issued and accesses completed so far
+//     (ControllerStats::command_cycles + completed): the pipeline's test of
+//     progress, asked every cycle.
+// wake() and activity() are plain members of the interface, not virtual:
+// the pipeline asks them for four ports in every simulated cycle.
 #pragma once
 
 #include <cstdint>
@@ -40,7 +45,8 @@ class MemoryPort {
   virtual sim::Fifo<sdram::Completion>& completions() = 0;
   virtual const sim::Fifo<sdram::Completion>& completions() const = 0;
   virtual void popped(sim::Cycle now) = 0;
-  virtual sim::Cycle wake() const = 0;
+  sim::Cycle wake() const { return wake_; }
+  std::uint64_t activity() const { return activity_; }
   // Tells `o` of every command the port puts on the DIMM's bus (a trace).
   virtual void set_observer(sdram::CommandObserver* o) = 0;
 
@@ -53,6 +59,10 @@ class MemoryPort {
   // is equal.
   virtual const sdram::ControllerStats& controller_stats() const = 0;
   virtual const sdram::DimmStats& dimm_stats() const = 0;
+
+ protected:
+  sim::Cycle wake_ = 0;
+  std::uint64_t activity_ = 0;
 };
 
 // The memory model of a run.

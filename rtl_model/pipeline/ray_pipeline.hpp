@@ -109,6 +109,7 @@ class RayPipeline {
       ports_.push_back(make_memory_port(config.memory_model, scheduler, refresh, config.dimm,
                                         config.controller, config.fast_forward,
                                         config.scheduler_params));
+      completions_[static_cast<std::size_t>(d)] = &ports_.back()->completions();
     }
   }
 
@@ -161,12 +162,16 @@ class RayPipeline {
     Cycle now = 0;
     Cycle last_progress = 0;
     std::uint64_t last_events = 0;
+    // The FIFOs account their occupancy when it changes (sim::Fifo's
+    // sample_on_change), not in every clock: most clocks change few of them.
+    for_each_fifo([this](auto& f) { f.sample_on_change(&now_); });
     // The frame ends when the last pixel is written and the samples still in
     // flight behind an early-terminated ray have drained.
     while (written_ < order_.size() || !quiet()) {
       const std::uint64_t events_before = events_;
       const std::uint64_t commands_before = config_.fast_forward ? commands() : 0;
       const StallStats stalls_before = stats_.stalls;
+      now_ = now;
       cycle(now);
       if (trace_) trace_fifos(now);
       ++stats_.evaluated_cycles;
@@ -184,20 +189,19 @@ class RayPipeline {
       // Fast-forward: a cycle in which nothing moved and no controller acted
       // repeats until the first cycle at which a timed condition can change
       // (a unit's result becomes ready, a ray's set-up ends, a controller can
-      // act); its stalls and FIFO samples repeat with it.
+      // act); its stalls repeat with it (the FIFOs' occupancies hold).
       Cycle next = now + 1;
       if (config_.fast_forward && events_ == events_before && commands() == commands_before) {
         next = std::max(next, next_event(now));
         if (next - last_progress > config_.deadlock_cycles) deadlock(now);
         const Cycle skipped = next - now - 1;
-        if (skipped > 0) {
-          repeat_stalls(stalls_before, skipped);
-          for (Cycle k = 0; k < skipped; ++k) sample_fifos();
-        }
+        if (skipped > 0) repeat_stalls(stalls_before, skipped);
       }
       now = next;
     }
     stats_.cycles = now;
+    now_ = now;
+    for_each_fifo([now](auto& f) { f.sample_until(now); });
     if (trace_) {
       trace_->finish(now);
       for (auto& p : ports_) p->set_observer(nullptr);
@@ -232,6 +236,11 @@ class RayPipeline {
     hls::BankAccess<P> next_access;
     std::array<layout::WordCoord, layout::kDimms> next_coord{};
     std::array<sdram::Address, layout::kDimms> next_addr{};
+    // Row-hit issue: row_hits() of the next sample, valid while the
+    // last-row registers are those of hits_epoch (the simulation's cache:
+    // the registers change at a row change, not at every issue).
+    int hits = 0;
+    std::uint64_t hits_epoch = kNoEpoch;
   };
   // Samples carry k, their place among the ray's issued samples, and pos,
   // their place among all its samples (issued or leapt over), 0 .. n-1.
@@ -289,9 +298,7 @@ class RayPipeline {
 
   std::uint64_t commands() const {
     std::uint64_t n = 0;
-    for (const auto& p : ports_)
-      n += static_cast<std::uint64_t>(p->controller_stats().command_cycles) +
-           p->controller_stats().completed;
+    for (const auto& p : ports_) n += p->activity();
     return n;
   }
 
@@ -347,7 +354,6 @@ class RayPipeline {
     memory(now);
     issue(now);
     setup(now);
-    sample_fifos();
   }
 
   // Frame buffer: one pixel per clock.
@@ -394,6 +400,7 @@ class RayPipeline {
           out_.push(Pixel{s.x, s.y, hls::output<P>(a)});
           pushed = true;
           s.finished = true;
+          if (s.in_issue) ++finished_in_issue_;
         }
         try_free(slot);
       }
@@ -505,8 +512,8 @@ class RayPipeline {
         port.push(r);
         ++events_;
       }
-      port.tick(now);
-      auto& completions = port.completions();
+      if (now >= port.wake()) port.tick(now);  // (a virtual call saved while it waits)
+      auto& completions = *completions_[d];
       if (completions.valid()) {
         const std::uint64_t id = completions.pop().request.id;
         port.popped(now);
@@ -564,7 +571,11 @@ class RayPipeline {
       t.request.id = tail;
       t.request.kind = sdram::RequestKind::kRead;
       t.request.address = s.next_addr[d];
-      last_row_[d][s.next_addr[d].bank] = s.next_addr[d].row;
+      std::uint32_t& last = last_row_[d][s.next_addr[d].bank];
+      if (last != s.next_addr[d].row) {
+        last = s.next_addr[d].row;
+        ++row_epoch_;  // every ray's cached row_hits() is stale
+      }
       req_[d].push(t);
     }
     ++events_;
@@ -588,6 +599,7 @@ class RayPipeline {
   void retire_finished_rays() {
     auto retire = [this](std::size_t k) {
       const int i = issue_q_.take(k);
+      --finished_in_issue_;
       ++events_;
       slots_[static_cast<std::size_t>(i)].in_issue = false;
       burst_count_ = 0;
@@ -598,6 +610,7 @@ class RayPipeline {
         retire(0);
       return;
     }
+    if (finished_in_issue_ == 0) return;  // (the walk touches every ray's slot)
     for (std::size_t k = issue_q_.size(); k-- > 0;)
       if (slots_[static_cast<std::size_t>(issue_q_.at(k))].finished) retire(k);
   }
@@ -637,9 +650,12 @@ class RayPipeline {
   // requested in their bank.
   int row_hits(Slot& s) {
     know_next_sample(s);
+    if (s.hits_epoch == row_epoch_) return s.hits;
     int hits = 0;
     for (std::size_t d = 0; d < layout::kDimms; ++d)
       hits += last_row_[d][s.next_addr[d].bank] == s.next_addr[d].row ? 1 : 0;
+    s.hits = hits;
+    s.hits_epoch = row_epoch_;
     return hits;
   }
 
@@ -657,6 +673,7 @@ class RayPipeline {
 
   void know_next_sample(Slot& s) {
     if (s.next_known) return;
+    s.hits_epoch = kNoEpoch;
     s.next_access = hls::address_generator<P>(f_.geometry, s.p);
     s.next_coord = layout::Vizard2Layout::neighbourhood(layout_.corner<P>(s.next_access));
     for (std::size_t d = 0; d < layout::kDimms; ++d) s.next_addr[d] = mapping_.map(s.next_coord[d]);
@@ -697,6 +714,7 @@ class RayPipeline {
   // ends it.
   void end_issue(std::size_t j, int i, Slot& s) {
     issue_q_.take(j);
+    if (s.finished) --finished_in_issue_;
     s.in_issue = false;
     s.issue_done = true;
     burst_count_ = 0;
@@ -744,16 +762,17 @@ class RayPipeline {
     setup_next_ = now + config_.latency.ray_setup_interval;
   }
 
-  void sample_fifos() {
-    free_.sample();
-    issue_q_.sample();
-    miss_.sample();
-    leapt_.sample();
-    for (auto& rq : req_) rq.sample();
-    interp_.sample();
-    class_.sample();
-    shade_.sample();
-    out_.sample();
+  template <class F>
+  void for_each_fifo(F f) {
+    f(free_);
+    f(issue_q_);
+    f(miss_);
+    f(leapt_);
+    for (auto& rq : req_) f(rq);
+    f(interp_);
+    f(class_);
+    f(shade_);
+    f(out_);
   }
 
   // ---- Ray slots ------------------------------------------------------------------------------
@@ -888,7 +907,11 @@ class RayPipeline {
   static constexpr std::uint32_t kNoRow = std::numeric_limits<std::uint32_t>::max();
   // Per DIMM and bank, the row of the last request the address generator sent.
   std::array<std::vector<std::uint32_t>, layout::kDimms> last_row_;
+  static constexpr std::uint64_t kNoEpoch = std::numeric_limits<std::uint64_t>::max();
+  std::uint64_t row_epoch_ = 0;  // changes with any of last_row_
   std::uint64_t events_ = 0;
+  std::size_t finished_in_issue_ = 0;  // rays in issue_q_ that have finished (ERT)
+  Cycle now_ = 0;  // the cycle being evaluated (the FIFOs' statistics clock)
   ref::QuantImage* image_ = nullptr;
 
   std::vector<Slot> slots_;
@@ -898,6 +921,7 @@ class RayPipeline {
   sim::Fifo<int> leapt_;  // rays whose pixel is due with nothing left in flight
   std::vector<sim::Fifo<TimedRequest>> req_;
   std::vector<std::unique_ptr<MemoryPort>> ports_;
+  std::array<sim::Fifo<sdram::Completion>*, layout::kDimms> completions_{};  // ports_[d]'s
   std::vector<Buffered> buf_;
   std::size_t buf_head_ = 0, buf_count_ = 0;
   sim::Fifo<Interpolated> interp_;

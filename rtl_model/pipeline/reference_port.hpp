@@ -39,8 +39,6 @@ class ReferencePort final : public MemoryPort {
   const sdram::ControllerStats& controller_stats() const override { return c_->stats(); }
   const sdram::DimmStats& dimm_stats() const override { return c_->dimm().stats(); }
 
-  // The first cycle at which tick() must run (a cycle >= 0).
-  sim::Cycle wake() const override { return skip_ ? wake_ : 0; }
   void set_observer(sdram::CommandObserver* o) override { c_->set_observer(o); }
 
   void push(const sdram::Request& r) override {
@@ -63,13 +61,14 @@ class ReferencePort final : public MemoryPort {
     if (skip_ && now < wake_) return;
     const sdram::Cycle commands = c_->stats().command_cycles;
     c_->tick(now);
+    activity_ = static_cast<std::uint64_t>(c_->stats().command_cycles) + c_->stats().completed;
+    if (!skip_) return;  // wake_ stays 0: tick every cycle
     wake_ = c_->stats().command_cycles != commands ? now + 1 : c_->next_event(now);
   }
 
  private:
   std::unique_ptr<sdram::Controller> c_;
   bool skip_;
-  sim::Cycle wake_ = 0;
 };
 
 }  // namespace voxcast::rtl::pipeline

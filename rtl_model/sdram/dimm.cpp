@@ -112,13 +112,9 @@ Dimm::Dimm(DimmConfig config)
       refresh_(timing_.tREFI, config_.refresh_postpone_limit),
       banks_(validated(config_.geometry).banks),
       last_by_bank_(config_.geometry.banks),
-      not_before_(config_.geometry.banks) {
+      not_before_(table_, config_.geometry.banks, kNever) {
   for (auto& last : last_by_bank_) last.fill(kNever);
   last_by_rank_.fill(kNever);
-  for (const Constraint& c : table_.rows())
-    after_[index_of(c.prev)].push_back(After{c.next, c.scope, c.cycles});
-  for (auto& nb : not_before_) nb.fill(kNever);
-  not_before_rank_.fill(kNever);
   stats_.banks.resize(config_.geometry.banks);
   // An open-page controller may leave a row open from just after one REF to
   // the next, which can come as late as the refresh deadline: that span must
@@ -154,28 +150,6 @@ void Dimm::no_such_bank(Command cmd, std::uint32_t bank) const {
 
 void Dimm::not_a_column_command(Command cmd) {
   throw Error("Dimm::next_command: " + std::string(name(cmd)) + " is not a column command");
-}
-
-// The rows (cmd -> next, scope, delay) of a command issued at `now`, as
-// gate() reads them: a rank command on either side binds every bank (the
-// scope of a row after a rank command is not consulted), and a rank command
-// after a bank command sees every bank as "other".
-void Dimm::raise_not_before(Command cmd, std::uint32_t bank, Cycle now) {
-  const bool rank = is_rank_command(cmd);
-  for (const After& r : after_[index_of(cmd)]) {
-    const Cycle at = now + r.cycles;
-    const std::size_t n = index_of(r.next);
-    if (is_rank_command(r.next)) {
-      if (rank || r.scope != Scope::kSameBank)
-        not_before_rank_[n] = std::max(not_before_rank_[n], at);
-    } else if (!rank && r.scope == Scope::kSameBank) {
-      not_before_[bank][n] = std::max(not_before_[bank][n], at);
-    } else {
-      const bool skip_own = !rank && r.scope == Scope::kOtherBank;
-      for (std::uint32_t b = 0; b < bank_count(); ++b)
-        if (!(skip_own && b == bank)) not_before_[b][n] = std::max(not_before_[b][n], at);
-    }
-  }
 }
 
 Gate Dimm::gate(Command cmd, std::uint32_t bank, Cycle now) const {
@@ -330,8 +304,13 @@ bool Dimm::check_state(Command cmd, const Address& a, std::string* why) const {
 
 // ---- Issue -------------------------------------------------------------------------------
 Issued Dimm::issue(Command cmd, const Address& a, Cycle now) {
-  std::string why;
-  if (!check(cmd, a, now, &why)) throw Error(why);
+  // The message is built only for a rejected command (check() again with a
+  // string): a string per command cost more than the check.
+  if (!check(cmd, a, now, nullptr)) {
+    std::string why;
+    check(cmd, a, now, &why);
+    throw Error(why);
+  }
   Issued issued;
   issued.command = cmd;
   issued.address = a;
@@ -388,7 +367,7 @@ void Dimm::apply(Command cmd, const Address& a, Cycle now) {
     case Command::kNop:
       return;
   }
-  raise_not_before(cmd, a.bank, now);
+  not_before_.raise(cmd, a.bank, now);
   if (is_rank_command(cmd)) {
     last_by_rank_[index_of(cmd)] = now;
   } else {

@@ -30,6 +30,7 @@
 
 #include "rtl_model/sdram/command.hpp"
 #include "rtl_model/sdram/geometry.hpp"
+#include "rtl_model/sdram/not_before.hpp"
 #include "rtl_model/sdram/observer.hpp"
 #include "rtl_model/sdram/refresh.hpp"
 #include "rtl_model/sdram/timing.hpp"
@@ -139,13 +140,12 @@ class Dimm {
 
   // Timing only (see the contract). `bank` is ignored for PREA and REF.
   // earliest() is one look-up in the table compiled as commands issue (see
-  // raise_not_before); gate() scans the table and names the binding row for
+  // NotBefore, not_before.hpp); gate() scans the table and names the binding row for
   // messages. Both give the same cycle (tests/rtl/test_sdram_dimm.cpp).
   Cycle earliest(Command cmd, std::uint32_t bank, Cycle now) const {
     if (cmd == Command::kNop) return now;
-    if (is_rank_command(cmd)) return std::max(now, not_before_rank_[index_of(cmd)]);
-    if (bank >= bank_count()) no_such_bank(cmd, bank);
-    return std::max(now, not_before_[bank][index_of(cmd)]);
+    if (!is_rank_command(cmd) && bank >= bank_count()) no_such_bank(cmd, bank);
+    return std::max(now, not_before_.at(cmd, bank));
   }
   Gate gate(Command cmd, std::uint32_t bank, Cycle now) const;
 
@@ -184,17 +184,9 @@ class Dimm {
   bool check_state(Command cmd, const Address& a, std::string* why) const;
   void apply(Command cmd, const Address& a, Cycle now);
   void close_row(std::uint32_t b, Cycle now);
-  void raise_not_before(Command cmd, std::uint32_t bank, Cycle now);
   void check_bank_exists(Command cmd, std::uint32_t bank) const;
   [[noreturn]] void no_such_bank(Command cmd, std::uint32_t bank) const;
   [[noreturn]] static void not_a_column_command(Command cmd);
-
-  // One compiled row of the constraint table: a later command, its scope and delay.
-  struct After {
-    Command next;
-    Scope scope;
-    Cycle cycles;
-  };
 
   DimmConfig config_;
   TimingCycles timing_;
@@ -206,12 +198,10 @@ class Dimm {
   std::vector<std::array<Cycle, kCommandCount>> last_by_bank_;
   std::array<Cycle, kCommandCount> last_by_rank_;
   Cycle last_command_ = kNever;
-  // The table compiled by previous command, and per bank and command (and
-  // for the rank commands) the first cycle every row issued so far allows:
-  // the simulation asks earliest() several times per cycle per DIMM.
-  std::array<std::vector<After>, kCommandCount> after_;
-  std::vector<std::array<Cycle, kCommandCount>> not_before_;
-  std::array<Cycle, kCommandCount> not_before_rank_;
+  // Per bank and command (and for the rank commands) the first cycle every
+  // row issued so far allows: the simulation asks earliest() several times
+  // per cycle per DIMM.
+  NotBefore not_before_;
   DimmStats stats_;
   CommandObserver* observer_ = nullptr;
 };

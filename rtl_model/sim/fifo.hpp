@@ -12,6 +12,12 @@
 //   - sample() is called once per clock of the FIFO's domain by its owner;
 //     it accumulates the occupancy statistics (mean, maximum, full and empty
 //     cycles). push/pop counts are kept independently of sampling.
+//   - Or the owner gives the FIFO its domain's cycle counter
+//     (sample_on_change) and calls sample_until(end) before reading stats():
+//     the same statistics as sample() at the end of every clock before
+//     `end`, accounted only when the occupancy changes (a model with many
+//     FIFOs, most of them unchanged in most clocks, pays per change instead
+//     of per clock and FIFO).
 //   - drained() / expect_drained(): data left in a FIFO at the end of a run is
 //     a lost transaction; expect_drained() throws naming the FIFO.
 #pragma once
@@ -72,6 +78,7 @@ class Fifo {
 
   void push(T value) {
     if (full()) fail("push while full");
+    if (clock_) account(*clock_);
     slots_[wrap(head_ + count_)] = std::move(value);
     ++count_;
     ++stats_.pushes;
@@ -85,6 +92,7 @@ class Fifo {
 
   T pop() {
     if (empty()) fail("pop while empty");
+    if (clock_) account(*clock_);
     T value = std::move(slots_[head_]);
     head_ = wrap(head_ + 1);
     --count_;
@@ -103,6 +111,7 @@ class Fifo {
   // place, so the order of the rest is kept (take(0) == pop()).
   T take(std::size_t i) {
     if (i >= count_) fail("take() past the last entry");
+    if (clock_) account(*clock_);
     T value = std::move(slots_[wrap(head_ + i)]);
     for (std::size_t k = i; k + 1 < count_; ++k)
       slots_[wrap(head_ + k)] = std::move(slots_[wrap(head_ + k + 1)]);
@@ -118,6 +127,18 @@ class Fifo {
     if (full()) ++stats_.full_cycles;
     if (empty()) ++stats_.empty_cycles;
   }
+
+  // Sampling on change (see the contract): `clock` is the owner's current
+  // cycle, read at every push, pop and take; the occupancy at the end of
+  // cycles before the one of a change is the occupancy before the change.
+  // Statistics so far are kept; the first change accounts from cycle `from`.
+  void sample_on_change(const std::int64_t* clock, std::int64_t from = 0) {
+    clock_ = clock;
+    accounted_ = from;
+  }
+  // Accounts the clocks up to `end` (exclusive) at the present occupancy, as
+  // sample() at the end of each of them would (sample_on_change only).
+  void sample_until(std::int64_t end) { account(end); }
 
   bool drained() const { return empty(); }
   void expect_drained() const {
@@ -136,6 +157,18 @@ class Fifo {
   // and pop (the pipeline moves several FIFO entries per simulated cycle).
   std::size_t wrap(std::size_t i) const { return i >= slots_.size() ? i - slots_.size() : i; }
 
+  // The clocks from the last account up to `end` (exclusive), each ending at
+  // the present occupancy.
+  void account(std::int64_t end) {
+    if (end <= accounted_) return;
+    const auto n = static_cast<std::uint64_t>(end - accounted_);
+    accounted_ = end;
+    stats_.sampled_cycles += n;
+    stats_.occupancy_sum += n * count_;
+    if (full()) stats_.full_cycles += n;
+    if (empty()) stats_.empty_cycles += n;
+  }
+
   [[noreturn]] void fail(std::string_view what) const {
     std::ostringstream os;
     os << "FIFO '" << name_ << "' (depth " << slots_.size() << "): " << what;
@@ -147,6 +180,8 @@ class Fifo {
   std::size_t head_ = 0;
   std::size_t count_ = 0;
   FifoStats stats_;
+  const std::int64_t* clock_ = nullptr;  // sample_on_change: the owner's cycle
+  std::int64_t accounted_ = 0;           // clocks before it are in stats_
 };
 
 template <typename T>

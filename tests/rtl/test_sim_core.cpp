@@ -8,6 +8,7 @@
 //      naming the FIFO.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -167,6 +168,50 @@ TEST(Fifo, OccupancyStatisticsAreMemberCounters) {
   EXPECT_DOUBLE_EQ(f.stats().mean_occupancy(), 2.0);
   EXPECT_EQ(f.stats().full_cycles, 1u);
   EXPECT_EQ(f.stats().empty_cycles, 1u);
+}
+
+// Sampling on change (the pipeline's FIFOs) gives the statistics of sampling
+// every clock: a fixed-seed stream of pushes, pops and takes, with idle
+// stretches, into two FIFOs, one sampled at the end of every cycle and one
+// told the cycle.
+TEST(Fifo, SamplingOnChangeEqualsSamplingEveryCycle) {
+  Fifo<int> every("every", 5), lazy("lazy", 5);
+  std::int64_t now = 0;
+  lazy.sample_on_change(&now);
+  std::uint32_t seed = 12345;
+  auto rnd = [&seed] {
+    seed = seed * 1664525u + 1013904223u;
+    return seed >> 16;
+  };
+  for (now = 0; now < 20000; ++now) {
+    const unsigned moves = (now / 500) % 3 == 2 ? 0 : rnd() % 3;  // idle stretches too
+    for (unsigned m = 0; m < moves; ++m) {
+      const unsigned op = rnd() % 3;
+      if (op == 0 && every.ready()) {
+        every.push(static_cast<int>(m));
+        lazy.push(static_cast<int>(m));
+      } else if (op == 1 && every.valid()) {
+        every.pop();
+        lazy.pop();
+      } else if (op == 2 && every.size() > 1) {
+        every.take(1);
+        lazy.take(1);
+      }
+    }
+    every.sample();
+  }
+  lazy.sample_until(now);
+  const FifoStats& a = every.stats();
+  const FifoStats& b = lazy.stats();
+  EXPECT_EQ(b.sampled_cycles, a.sampled_cycles);
+  EXPECT_EQ(b.occupancy_sum, a.occupancy_sum);
+  EXPECT_EQ(b.full_cycles, a.full_cycles);
+  EXPECT_EQ(b.empty_cycles, a.empty_cycles);
+  EXPECT_EQ(b.max_occupancy, a.max_occupancy);
+  EXPECT_EQ(b.pushes, a.pushes);
+  EXPECT_EQ(b.pops, a.pops);
+  EXPECT_GT(a.full_cycles, 0u);
+  EXPECT_GT(a.empty_cycles, 0u);
 }
 
 TEST(Fifo, OverflowAndUnderflowAreErrorsNamingTheFifo) {
