@@ -56,15 +56,14 @@ void write_cosim_images(const std::string& out_dir, const ref::Scene& scene,
       written.push_back(path(f));
 }
 
-namespace {
-
-// The first pixel, in row-major order, where the two images differ.
 bool first_difference(const ref::QuantImage& a, const ref::QuantImage& b, int& x, int& y) {
   for (y = 0; y < a.height; ++y)
     for (x = 0; x < a.width; ++x)
       if (a.at(x, y) != b.at(x, y)) return true;
   return false;
 }
+
+namespace {
 
 // A scene that reproduces a mismatch: the scene as run, with a comment naming
 // the pixel, sample and unit. tests/regress/ holds the ones worth keeping.

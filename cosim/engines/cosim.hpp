@@ -23,7 +23,7 @@ struct Mismatch {
   std::string engine = "hls";     // the engine that differs from the reference
   // hls against bit-true: both rays' unit outputs, sample by sample (the
   // report page's per-unit trace); empty when the cycle model differs.
-  bittrue::RayTrace hls_trace, bt_trace;
+  bittrue::RayTrace hls_trace = {}, bt_trace = {};
 };
 
 // An engine cosim could not run, and why (a profile the hls kernels are not
@@ -36,7 +36,7 @@ struct EngineNotRun {
 struct CosimResult {
   bool hls_ran = false;       // the hls engine is compiled for the profile
   bool rtl_ran = false;       // the cycle model ran (it needs hls_ran and the volume in its DIMMs)
-  std::vector<EngineNotRun> not_run;  // what did not run, and why
+  std::vector<EngineNotRun> not_run = {};  // what did not run, and why
   bool bit_exact = false;     // hls == bit-true == rtl on every pixel (true when !hls_ran)
   bool rtl_exact = true;      // rtl == hls
   std::uint64_t rtl_cycles = 0;
@@ -44,7 +44,7 @@ struct CosimResult {
   Accuracy accuracy;          // hls against the float reference at the same settings
   TruthSettings truth;        // how the truth was rendered
   Accuracy truth_accuracy;    // hls (bit-true if !hls_ran) against the truth
-  ErrorHistogram truth_histogram;  // the same pixels' worst-channel errors, binned
+  ErrorHistogram truth_histogram = {};  // the same pixels' worst-channel errors, binned
   Mismatch mismatch;          // when !bit_exact
   std::uint64_t samples_float = 0, samples_hls = 0;
   std::vector<Hazard> hazards;  // the precision guard's (cosim/engines/warnings.hpp)
@@ -60,6 +60,10 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
                       const TruthSettings& truth = {}, bool strict = false);
 
 void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimResult& r);
+
+// The first pixel, in row-major order, where two images differ: true and its
+// (x, y), or false.
+bool first_difference(const ref::QuantImage& a, const ref::QuantImage& b, int& x, int& y);
 
 // The images of a cosim in OUT (the ray caster's and VIRIM's): layers.exr
 // (float, hls and their difference), float.png, hls.png (if it ran),

@@ -63,24 +63,12 @@ ref::QuantImage render_hls(const bittrue::VirimSetup& s, const bittrue::VirimMem
   return img;
 }
 
-std::string with_suffix(const std::string& path, const std::string& suffix) {
-  const std::filesystem::path p(path);
-  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
-}
 
 void check_hls(const HeidelbergProfile& p) {
   if (!hls_supports_heidelberg(p))
     throw Error("heidelberg.weight_bits = " + std::to_string(p.weight_bits) +
                 " is not compiled into the hls engine (compiled: " +
                 hls::virim::host::kCompiledHeidelbergProfiles + "); use the bittrue engine");
-}
-
-// The first pixel (row-major) where two images differ, or false.
-bool first_difference(const ref::QuantImage& a, const ref::QuantImage& b, int& x, int& y) {
-  for (y = 0; y < a.height; ++y)
-    for (x = 0; x < a.width; ++x)
-      if (a.at(x, y) != b.at(x, y)) return true;
-  return false;
 }
 
 rtl::virim::VirimRtlResult run_rtl(const ref::Scene& scene, const bittrue::VirimSetup& setup,

@@ -30,10 +30,6 @@
 namespace voxcast::cosim {
 namespace {
 
-std::string with_suffix(const std::string& path, const std::string& suffix) {
-  const std::filesystem::path p(path);
-  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
-}
 
 struct View {
   ref::CameraPose pose;
@@ -285,6 +281,11 @@ void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummar
   if (s.engine == Engine::Rtl && s.vcd_commands > 0)
     os << "vcd      " << s.vcd_commands << " SDRAM commands inside the window\n";
   for (const std::string& w : s.written) os << "wrote    " << w << "\n";
+}
+
+std::string with_suffix(const std::string& path, const std::string& suffix) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
 }  // namespace voxcast::cosim

@@ -56,4 +56,8 @@ RenderSummary run_render(const ref::Scene& scene, const RenderOptions& options);
 
 void print_summary(std::ostream& os, const ref::Scene& scene, const RenderSummary& s);
 
+// "out/a.png" with "_left" -> "out/a_left.png": the name of a view's or a
+// frame's file (stereo eyes, path frames, their VCD traces).
+std::string with_suffix(const std::string& path, const std::string& suffix);
+
 }  // namespace voxcast::cosim

@@ -33,7 +33,7 @@ struct SweepOptions {
   bool resume = false;
   // --truth-cache: the folder of truths on disk (TruthCache), shared by the
   // shards and later runs of a sweep; empty = DIR/truth.
-  std::string truth_cache;
+  std::string truth_cache = {};
 };
 
 // What a column group sees of one point, after the design's image is rendered.

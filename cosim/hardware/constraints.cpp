@@ -19,12 +19,6 @@ using rtl::board::Board;
 using rtl::board::Clock;
 
 // Three decimals: picoseconds, as Vivado reports and as the model's periods.
-std::string ns3(double ns) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", ns + 0.0);  // + 0.0: no "-0.000"
-  if (std::string(buf) == "-0.000") return "0.000";
-  return buf;
-}
 
 std::string port_prefix(const Board& b, int dimm) {
   std::string p = b.memory.ports;
@@ -325,6 +319,13 @@ int check_constraint_goldens(const std::string& golden_dir, bool bless, std::ost
     }
   }
   return differ;
+}
+
+std::string ns3(double ns) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", ns + 0.0);  // + 0.0: no "-0.000"
+  if (std::string(buf) == "-0.000") return "0.000";
+  return buf;
 }
 
 }  // namespace voxcast::cosim

@@ -48,6 +48,10 @@ std::vector<std::string> forwarded_clock_names(const rtl::board::Board& board);
 // The whole constraint file. Deterministic: the same board gives the same text.
 std::string generate_constraints(const rtl::board::Board& board, ConstraintFormat format);
 
+// Nanoseconds with three decimals, as the constraints and the synthesis
+// scripts print periods and delays ("10.000"; never "-0.000").
+std::string ns3(double ns);
+
 }  // namespace voxcast::cosim
 
 namespace voxcast::cosim {

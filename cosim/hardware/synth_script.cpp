@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cosim/engines/engines.hpp"
+#include "cosim/hardware/constraints.hpp"
 #include "hls/frame_image.hpp"
 #include "hls/host_frame.hpp"
 #include "refmodel/render/raycaster.hpp"
@@ -18,12 +19,6 @@ namespace voxcast::cosim {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string ns3(double ns) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", ns);
-  return buf;
-}
 
 // The presets compiled into hls/vizard2_synth_top.cpp, by the name of their
 // traits type (the -D value, refmodel/precision/profile_traits.hpp) and their

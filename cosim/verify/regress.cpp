@@ -69,7 +69,7 @@ struct CaseResult {
 
 // "hls differs from bit-true at pixel (x, y): (r, g, b, a) against (...)" of
 // the first pixel in scan order where the two images differ.
-std::string first_difference(const ref::QuantImage& hls, const ref::QuantImage& bt) {
+std::string first_difference_text(const ref::QuantImage& hls, const ref::QuantImage& bt) {
   for (int y = 0; y < hls.height; ++y)
     for (int x = 0; x < hls.width; ++x) {
       const auto& a = hls.at(x, y);
@@ -194,7 +194,7 @@ CaseResult run_case(const RegressOptions& o, const ref::Scene& scene, const Scen
     r.failed = golden != r.hash;
   }
   if (!r.bit_exact) r.failed = true;
-  r.junit = junit_case(scene_name, profile, r, r.bit_exact ? "" : first_difference(hls, bt), gpath,
+  r.junit = junit_case(scene_name, profile, r, r.bit_exact ? "" : first_difference_text(hls, bt), gpath,
                        seconds_since(t0));
   os << std::left << std::setw(20) << scene_name << " " << std::setw(10) << profile
      << (r.bit_exact ? "bit-exact  " : "MISMATCH   ") << r.hash << "  " << r.status << extra.str()

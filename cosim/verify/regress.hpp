@@ -20,7 +20,7 @@ struct RegressOptions {
   std::vector<std::string> profiles;     // presets to run
   bool bless = false;
   std::vector<std::string> overrides;    // --set, applied to every scene
-  std::string junit_path;                // --junit: the cases as JUnit XML (empty: none)
+  std::string junit_path = {};           // --junit: the cases as JUnit XML (empty: none)
 };
 
 // FNV-1a (64 bit) over the image's size, bit depth and pixels.

@@ -16,7 +16,7 @@ namespace {
 constexpr double kUnevenTolerance = 0.01;  // as the loader: relative deviation from the median gap
 constexpr double kSnapPixels = 1e-6;       // an in-plane offset smaller than this is none
 
-std::string num(double v, const char* format = "%.6g") {
+std::string format_number(double v, const char* format = "%.6g") {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
   return buf;
@@ -95,16 +95,16 @@ RegularGrid plan_regular_grid(const std::vector<StackSlice>& slices, const Stack
   g.shear_v = (last.v - first.v) / extent;
   g.tilt_deg = std::atan(std::hypot(g.shear_u, g.shear_v)) * 180.0 / std::numbers::pi;
   if (!(g.tilt_deg <= kMaxTiltDeg))
-    throw Error(where + ": the slice positions lean " + num(g.tilt_deg, "%.1f") +
+    throw Error(where + ": the slice positions lean " + format_number(g.tilt_deg, "%.1f") +
                 " deg from ImageOrientationPatient's normal (" + first.name + " to " + last.name +
-                "), more than " + num(kMaxTiltDeg) +
+                "), more than " + format_number(kMaxTiltDeg) +
                 " deg: a degenerate series, not a gantry tilt that can be resampled");
   // Every slice on the line of that one tilt, within a pixel.
   for (const StackSlice& s : slices) {
     const double du = (s.u - first.u - g.shear_u * (s.w - first.w)) / layout.spacing_x;
     const double dv = (s.v - first.v - g.shear_v * (s.w - first.w)) / layout.spacing_y;
     if (std::hypot(du, dv) > 1.0)
-      throw Error(where + ": " + s.name + " is offset " + num(std::hypot(du, dv), "%.1f") +
+      throw Error(where + ": " + s.name + " is offset " + format_number(std::hypot(du, dv), "%.1f") +
                   " pixels sideways from the line of slice positions through " + first.name +
                   " and " + last.name + " (not one gantry tilt: cannot resample)");
   }
@@ -114,8 +114,8 @@ RegularGrid plan_regular_grid(const std::vector<StackSlice>& slices, const Stack
   const double planes = std::round(extent / g.spacing_z) + 1.0;
   const double voxels = planes * layout.columns * layout.rows;
   if (!(voxels <= static_cast<double>(kMaxLoadVoxels)))
-    throw Error(where + ": resampling onto " + num(g.spacing_z) + " mm slices needs " +
-                num(planes, "%.0f") + " slices, more than the limit of 2^31 voxels");
+    throw Error(where + ": resampling onto " + format_number(g.spacing_z) + " mm slices needs " +
+                format_number(planes, "%.0f") + " slices, more than the limit of 2^31 voxels");
   g.slices = static_cast<int>(planes);
   g.w0 = first.w;
   g.u0 = first.u + g.shear_u * extent / 2.0;
