@@ -24,6 +24,7 @@ template <class P>
 ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
                        int threads, ref::FrameStats* stats) {
   const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
+  const bool implicit_leap = hls::host::load_implicit_leap<P>(fs, memory, *frame, "hls engine");
   const hls::host::BitTrueBanks<P> banks(memory);
   const int w = fs.regs.width, h = fs.regs.height;
   std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
@@ -40,7 +41,8 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
   if (stats) {
     *stats = ref::FrameStats{};
     stats->rays = fb.size();
-    for (const hls::RowStats& r : rows) {
+    for (hls::RowStats r : rows) {
+      if (implicit_leap) hls::host::count_implicit_leaps(r);
       stats->samples += r.samples;
       stats->samples_skipped += r.samples_skipped;
       stats->rays_hit += r.rays_hit;

@@ -51,7 +51,17 @@ struct VoxelWord {
 struct VoxelMemory {
   std::array<int, 3> dims{};
   std::array<std::vector<VoxelWord>, 8> banks;
+  // The volume's min-max blocks (docs/leaping.md) of the stored values, which the value
+  // fields hold << value_shift, built with the memory (make_voxel_memory) at
+  // engine_leap_block_log2: what an engine reads that leaps on its own when the scene
+  // does not ask for space leaping (the hls engine; the image is the same bits). Null
+  // when the memory was not made by make_voxel_memory.
+  std::shared_ptr<const ref::MinMaxBlocks> leap_blocks;
+  int value_shift = 0;
 };
+// The block edge (log2) of VoxelMemory::leap_blocks: 8^3 cells, larger when a volume
+// would need more blocks than the hls unit's min-max memory holds (2^15).
+int engine_leap_block_log2(const std::array<int, 3>& dims);
 
 // One classification-table entry, each field an unsigned fraction (§4).
 struct ClassEntry {
