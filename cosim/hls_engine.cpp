@@ -6,6 +6,7 @@
 
 #include "cosim/engines.hpp"
 #include "hls/host_frame.hpp"
+#include "hls/host_march.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 
@@ -24,16 +25,18 @@ template <class P>
 ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
                        int threads, ref::FrameStats* stats) {
   const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
-  const bool implicit_leap = hls::host::load_implicit_leap<P>(fs, memory, *frame, "hls engine");
-  const hls::host::BitTrueBanks<P> banks(memory);
+  const auto empty = hls::host::empty_blocks<P>(fs, memory);  // hls/host_march.hpp
   const int w = fs.regs.width, h = fs.regs.height;
   std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   std::vector<hls::RowStats> rows(static_cast<std::size_t>(h));
   ref::parallel_for(
       h,
       [&](int y) {
-        hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(),
-                            &rows[static_cast<std::size_t>(y)]);
+        hls::RowStats& row = rows[static_cast<std::size_t>(y)];
+        hls::host::EngineBanks<P> banks(memory);
+        banks.blocks = empty.get();
+        banks.skipped = &row.samples;
+        hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(), &row);
       },
       threads);
   ref::QuantImage img(w, h, P::out_bits);
@@ -41,8 +44,7 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
   if (stats) {
     *stats = ref::FrameStats{};
     stats->rays = fb.size();
-    for (hls::RowStats r : rows) {
-      if (implicit_leap) hls::host::count_implicit_leaps(r);
+    for (const hls::RowStats& r : rows) {
       stats->samples += r.samples;
       stats->samples_skipped += r.samples_skipped;
       stats->rays_hit += r.rays_hit;

@@ -115,39 +115,6 @@ std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs
   return f;
 }
 
-// Space leaping the host engine does on its own: when the frame does not ask
-// for it (no render.space_leaping), is not MIP, and the memory carries its
-// min-max blocks (bittrue::VoxelMemory::leap_blocks), loads the leap unit of
-// `f` from them and the frame's classification table, and returns true. The
-// image is the same bits (docs/leaping.md: a leap skips only samples whose
-// classified opacity is 0); only the counts move, from samples to skipped
-// ones, which the caller adds back (count_implicit_leaps). A design without
-// the unit, or a volume needing more blocks than its memory holds, does not.
-template <class P, class U>
-bool load_implicit_leap(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
-                        FrameState<P, U>& f, const std::string& engine) {
-  if constexpr (U::space_leaping) {
-    if (fs.leap || fs.regs.mode == ref::RenderMode::Mip || !memory.leap_blocks ||
-        memory.leap_blocks->count() > static_cast<std::size_t>(LeapParams<P>::max_blocks))
-      return false;
-    bittrue::LeapTables t;
-    t.blocks = memory.leap_blocks;
-    t.value_shift = memory.value_shift;
-    t.nonzero_prefix = bittrue::nonzero_prefix(fs.class_table);
-    load_leap<P>(t, f.leap, f.minmax, engine);
-    return true;
-  } else {
-    return false;
-  }
-}
-
-// The frame's counts as the scene asked for them: the samples an implicit
-// leap skipped are samples (without leaping every one is interpolated).
-inline void count_implicit_leaps(RowStats& s) {
-  s.samples += s.samples_skipped;
-  s.samples_skipped = 0;
-}
-
 }  // namespace host
 }  // namespace hls
 }  // namespace voxcast

@@ -53,15 +53,14 @@ struct VoxelMemory {
   std::array<std::vector<VoxelWord>, 8> banks;
   // The volume's min-max blocks (docs/leaping.md) of the stored values, which the value
   // fields hold << value_shift, built with the memory (make_voxel_memory) at
-  // engine_leap_block_log2: what an engine reads that leaps on its own when the scene
-  // does not ask for space leaping (the hls engine; the image is the same bits). Null
-  // when the memory was not made by make_voxel_memory.
+  // kEngineLeapBlockLog2: what an engine reads that skips empty space on its own when the
+  // scene does not ask for space leaping (the hls engine, hls/host_march.hpp; the image
+  // is the same bits). Null when the memory was not made by make_voxel_memory.
   std::shared_ptr<const ref::MinMaxBlocks> leap_blocks;
   int value_shift = 0;
 };
-// The block edge (log2) of VoxelMemory::leap_blocks: 8^3 cells, larger when a volume
-// would need more blocks than the hls unit's min-max memory holds (2^15).
-int engine_leap_block_log2(const std::array<int, 3>& dims);
+// The block edge (log2) of VoxelMemory::leap_blocks: 4^3 cells.
+inline constexpr int kEngineLeapBlockLog2 = 2;
 
 // One classification-table entry, each field an unsigned fraction (§4).
 struct ClassEntry {

@@ -241,21 +241,9 @@ VoxelMemory make_voxel_memory(const PrecisionProfile& p, const ref::Volume& volu
         }
       }
   mem.leap_blocks = std::make_shared<const ref::MinMaxBlocks>(
-      ref::make_min_max_blocks(volume, engine_leap_block_log2(volume.dims)));
+      ref::make_min_max_blocks(volume, kEngineLeapBlockLog2));
   mem.value_shift = shift;
   return mem;
-}
-
-int engine_leap_block_log2(const std::array<int, 3>& dims) {
-  constexpr std::int64_t max_blocks = std::int64_t{1} << 15;  // hls::LeapParams::max_blocks
-  int lb = 3;
-  const auto count = [&](int l) {
-    std::int64_t n = 1;
-    for (const int d : dims) n *= (std::max(d - 2, 0) >> l) + 1;
-    return n;
-  };
-  while (lb < 6 && count(lb) > max_blocks) ++lb;
-  return lb;
 }
 
 }  // namespace voxcast::bittrue
