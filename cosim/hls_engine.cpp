@@ -32,11 +32,14 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
   ref::parallel_for(
       h,
       [&](int y) {
-        hls::RowStats& row = rows[static_cast<std::size_t>(y)];
+        // Counted on this thread's stack, then stored: rows[y] and rows[y + 1] share a
+        // cache line, and the other thread is rendering row y + 1.
+        hls::RowStats row;
         hls::host::EngineBanks<P> banks(memory);
         banks.blocks = empty.get();
         banks.skipped = &row.samples;
         hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(), &row);
+        rows[static_cast<std::size_t>(y)] = row;
       },
       threads);
   ref::QuantImage img(w, h, P::out_bits);
