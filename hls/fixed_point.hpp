@@ -725,7 +725,7 @@ struct cmp_rule {
 // aligned patterns, as a - b would compute it (section 5), without the general path's sign and
 // remainder cases. Not for the unsigned rules of mixed signedness (rel_unsigned, eq_modular).
 template <class A, class B>
-struct cmp_in_word : bool_c<(rtype<A, B>::minus::width <= 64)> {};
+struct cmp_in_word : bool_c<(rtype<A, B>::im + 1 + rtype<A, B>::fm <= 64)> {};
 template <class A, class B>
 constexpr std::int64_t aligned_word(const A& a) noexcept {
   using RT = rtype<A, B>;
