@@ -91,7 +91,7 @@ struct ClassificationTable {
 
 // §4.1: addr = SAT(Q_RND(value · 2^(tf_addr_bits - vb), 0), 0, 2^tf_addr_bits - 1).
 template <class P>
-typename ClassificationParams<P>::addr_t class_address(
+VOXCAST_HLS_HOST_INLINE typename ClassificationParams<P>::addr_t class_address(
     const typename ClassificationParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ClassificationParams<P>;
@@ -104,8 +104,8 @@ typename ClassificationParams<P>::addr_t class_address(
 
 // §4: one table read per sample.
 template <class P>
-ClassEntry<P> classify(const ClassificationTable<P>& table,
-                       const typename ClassificationParams<P>::value_t& value) {
+VOXCAST_HLS_HOST_INLINE ClassEntry<P> classify(
+    const ClassificationTable<P>& table, const typename ClassificationParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   return table.entry[class_address<P>(value).to_uint()];
 }

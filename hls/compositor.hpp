@@ -97,8 +97,8 @@ struct Accumulator {
 // A sample with alpha_c = 0 is skipped: returns false, state unchanged, and the
 // caller must not test ERT after it (§7).
 template <class P>
-bool composite(Accumulator<P>& acc, const ShadedColor<P>& c,
-               const typename CompositorParams<P>::alpha_t& alpha_c) {
+VOXCAST_HLS_HOST_INLINE bool composite(Accumulator<P>& acc, const ShadedColor<P>& c,
+                                       const typename CompositorParams<P>::alpha_t& alpha_c) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = CompositorParams<P>;
   using acc_t = typename Params::acc_t;
@@ -107,7 +107,7 @@ bool composite(Accumulator<P>& acc, const ShadedColor<P>& c,
   const acc_t one = 1;
   const acc_t transparency = one - acc.A;  // exact: A <= 1
   const weight_t w = transparency * alpha_c;
-  [[gnu::unused]] composite_channels : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] composite_channels : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const weight_t contribution = w * c.c[k];
     const auto sum = acc.C[k] + contribution;
@@ -120,15 +120,16 @@ bool composite(Accumulator<P>& acc, const ShadedColor<P>& c,
 
 // §7.3: early ray termination after a composited sample.
 template <class P>
-bool ert_reached(const Accumulator<P>& acc, const CompositorRegisters<P>& regs) {
+VOXCAST_HLS_HOST_INLINE bool ert_reached(const Accumulator<P>& acc,
+                                         const CompositorRegisters<P>& regs) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   return regs.ert_enabled && acc.A >= regs.ert_threshold;
 }
 
 // §7 MIP: M = max_j value_j (M starts at 0).
 template <class P>
-void mip_update(typename CompositorParams<P>::value_t& M,
-                const typename CompositorParams<P>::value_t& value) {
+VOXCAST_HLS_HOST_INLINE void mip_update(typename CompositorParams<P>::value_t& M,
+                                        const typename CompositorParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   if (value > M) M = value;
 }
@@ -171,7 +172,7 @@ template <class P>
 OutputPixel<P> output(const Accumulator<P>& acc) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   OutputPixel<P> px;
-  [[gnu::unused]] output_channels : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] output_channels : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     px.ch[k] = quantize_output<P>(acc.C[k]);
   }

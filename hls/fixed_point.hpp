@@ -720,8 +720,31 @@ struct cmp_rule {
   using U = word_t<imax(RT::w1, RT::w2)>;
 };
 
+// Both operands aligned to the finer LSB fit one signed 64-bit word when their exact
+// difference does (the width of a - b): then the exact comparison is one comparison of the
+// aligned patterns, as a - b would compute it (section 5), without the general path's sign and
+// remainder cases. Not for the unsigned rules of mixed signedness (rel_unsigned, eq_modular).
 template <class A, class B>
-constexpr int compare_as_is(const A& a, const B& b) noexcept {
+struct cmp_in_word : bool_c<(rtype<A, B>::im + 1 + rtype<A, B>::fm <= 64)> {};
+template <class A, class B>
+constexpr std::int64_t aligned_word(const A& a) noexcept {
+  using RT = rtype<A, B>;
+  return static_cast<std::int64_t>(aligned<std::uint64_t, RT::fm - RT::f1>(a));
+}
+template <class A, class B>
+constexpr std::int64_t aligned_word_right(const B& b) noexcept {
+  using RT = rtype<A, B>;
+  return static_cast<std::int64_t>(aligned<std::uint64_t, RT::fm - RT::f2>(b));
+}
+
+template <class A, class B>
+constexpr int compare_as_is(const A& a, const B& b, bool_c<true> /* in one word */) noexcept {
+  const std::int64_t x = aligned_word<A, B>(a);
+  const std::int64_t y = aligned_word_right<A, B>(b);
+  return (x > y) - (x < y);
+}
+template <class A, class B>
+constexpr int compare_as_is(const A& a, const B& b, bool_c<false>) noexcept {
   using C = cmp_rule<A, B>;
   using U = typename C::U;
   const wide<U> x = widen<U, C::RT::s1>(raw_of(a));
@@ -732,6 +755,12 @@ constexpr int compare_as_is(const A& a, const B& b) noexcept {
     if (y.neg) return -1;
   }
   return cmp_exact(x, C::RT::f1, y, C::RT::f2);
+}
+template <class A, class B>
+struct cmp_fast : bool_c<!cmp_rule<A, B>::rel_unsigned && cmp_in_word<A, B>::value> {};
+template <class A, class B>
+constexpr int compare_as_is(const A& a, const B& b) noexcept {
+  return compare_as_is(a, b, cmp_fast<A, B>{});
 }
 
 // (s mod 2^wu) == u on the aligned patterns, for a negative signed s (section 8). The signed
@@ -772,12 +801,20 @@ constexpr bool modular_equal(i128 s, u128 u) noexcept {
 // == on the exact values; == with the modular rule when the signed operand (a for
 // bool_c<true>, b for bool_c<false>) is negative.
 template <class A, class B>
-constexpr bool equal_exact(const A& a, const B& b) noexcept {
+constexpr bool equal_exact(const A& a, const B& b, bool_c<true> /* in one word */) noexcept {
+  return aligned_word<A, B>(a) == aligned_word_right<A, B>(b);
+}
+template <class A, class B>
+constexpr bool equal_exact(const A& a, const B& b, bool_c<false>) noexcept {
   using C = cmp_rule<A, B>;
   using RT = typename C::RT;
   using U = typename C::U;
   return cmp_exact(widen<U, RT::s1>(raw_of(a)), RT::f1, widen<U, RT::s2>(raw_of(b)), RT::f2) ==
          0;
+}
+template <class A, class B>
+constexpr bool equal_exact(const A& a, const B& b) noexcept {
+  return equal_exact(a, b, cmp_in_word<A, B>{});
 }
 template <class A, class B>
 constexpr bool equal_modular(const A& a, const B& b,

@@ -401,10 +401,10 @@ constexpr int stepping_depth = 1;
 
 // §2: p += s (exact in pf bits).
 template <class P>
-void step_position(typename GeometryParams<P>::pos_t p[3],
-                   const typename GeometryParams<P>::step_t s[3]) {
+VOXCAST_HLS_HOST_INLINE void step_position(typename GeometryParams<P>::pos_t p[3],
+                                           const typename GeometryParams<P>::step_t s[3]) {
   VOXCAST_HLS_PRAGMA(HLS LATENCY min = stepping_depth max = stepping_depth)
-  [[gnu::unused]] advance_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] advance_loop : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     p[k] += s[k];
   }

@@ -100,11 +100,12 @@ struct VoxelWordFx {
 
 // §3.4 packed layout: value in [vb-1:0], component c in [vb+(c+1)gb-1 : vb+c·gb].
 template <class P>
-VoxelWordFx<P> unpack_voxel_word(const typename InterpolationParams<P>::packed_word_t& w) {
+VOXCAST_HLS_HOST_INLINE VoxelWordFx<P> unpack_voxel_word(
+    const typename InterpolationParams<P>::packed_word_t& w) {
   using I = InterpolationParams<P>;
   VoxelWordFx<P> v;
   write_bits(v.value, I::vb - 1, 0, read_bits(w, I::vb - 1, 0));
-  [[gnu::unused]] unpack_loop : for (int c = 0; c < 3; ++c) {
+  [[gnu::unused]] unpack_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename I::packed_word_t field = w >> (I::vb + c * I::gb);
     write_bits(v.g[c], I::gb - 1, 0, read_bits(field, I::gb - 1, 0));
@@ -117,7 +118,7 @@ typename InterpolationParams<P>::packed_word_t pack_voxel_word(const VoxelWordFx
   using I = InterpolationParams<P>;
   typename I::packed_word_t w = 0;
   write_bits(w, I::vb - 1, 0, read_bits(v.value, I::vb - 1, 0));
-  [[gnu::unused]] pack_loop : for (int c = 0; c < 3; ++c) {
+  [[gnu::unused]] pack_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename I::packed_word_t field = 0;
     write_bits(field, I::gb - 1, 0, read_bits(v.g[c], I::gb - 1, 0));
@@ -130,7 +131,8 @@ typename InterpolationParams<P>::packed_word_t pack_voxel_word(const VoxelWordFx
 template <class P>
 struct PackedBanks {
   const typename InterpolationParams<P>::packed_word_t* bank[8];
-  VoxelWordFx<P> read(int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
+  VOXCAST_HLS_HOST_INLINE VoxelWordFx<P> read(
+      int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
     return unpack_voxel_word<P>(bank[b][addr.to_uint64()]);
   }
 };
@@ -150,9 +152,9 @@ struct BankAccess {
 // cell's base voxel i0 = min(floor(cp), dim - 2) (0 if dim = 1). Space leaping
 // (hls/space_leaping_unit.hpp) finds a sample's block from the same i0.
 template <class P>
-typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
-                                                const typename GeometryParams<P>::pos_t& pk, int k,
-                                                typename InterpolationParams<P>::cpos_t& cp) {
+VOXCAST_HLS_HOST_INLINE typename GeometryParams<P>::coord_t sample_cell(
+    const GeometryRegisters<P>& r, const typename GeometryParams<P>::pos_t& pk, int k,
+    typename InterpolationParams<P>::cpos_t& cp) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using G = GeometryParams<P>;
   typename G::pos_t c = pk;
@@ -166,8 +168,8 @@ typename GeometryParams<P>::coord_t sample_cell(const GeometryRegisters<P>& r,
 }
 
 template <class P>
-BankAccess<P> address_generator(const GeometryRegisters<P>& r,
-                                const typename GeometryParams<P>::pos_t p[3]) {
+VOXCAST_HLS_HOST_INLINE BankAccess<P> address_generator(
+    const GeometryRegisters<P>& r, const typename GeometryParams<P>::pos_t p[3]) {
   VOXCAST_HLS_PRAGMA(HLS LATENCY min = address_generator_depth
                          max = address_generator_depth)
   using G = GeometryParams<P>;
@@ -176,7 +178,7 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
   typename G::coord_t half[3];  // i0 >> 1
   bool odd[3];                  // i0 & 1
   acc.parity = 0;
-  [[gnu::unused]] axis_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] axis_loop : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename I::cpos_t cp;
     const typename G::coord_t i0 = sample_cell<P>(r, p[k], k, cp);  // §3.1-3.2
@@ -197,7 +199,7 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
   const word_addr_t inc_x = odd[0] ? word_addr_t(1) : zero;
   const word_addr_t inc_y = odd[1] ? word_addr_t(r.HX) : zero;
   const word_addr_t inc_z = odd[2] ? word_addr_t(r.HXY) : zero;
-  [[gnu::unused]] bank_loop : for (int b = 0; b < 8; ++b) {
+  [[gnu::unused]] bank_loop : VOXCAST_HLS_HOST_UNROLL for (int b = 0; b < 8; ++b) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     word_addr_t addr = base;
     if ((b & 1) == 0) addr += inc_x;
@@ -214,9 +216,10 @@ BankAccess<P> address_generator(const GeometryRegisters<P>& r,
 // multiplexer on the words, selected by the cell's parity; no address or port
 // is chosen at run time.
 template <class P>
-void crossbar(const VoxelWordFx<P> word[8], unsigned parity, VoxelWordFx<P> corner[8]) {
+VOXCAST_HLS_HOST_INLINE void crossbar(const VoxelWordFx<P> word[8], unsigned parity,
+                                      VoxelWordFx<P> corner[8]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
-  [[gnu::unused]] crossbar_loop : for (int j = 0; j < 8; ++j) {
+  [[gnu::unused]] crossbar_loop : VOXCAST_HLS_HOST_UNROLL for (int j = 0; j < 8; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     corner[j] = word[static_cast<unsigned>(j) ^ parity];
   }
@@ -227,9 +230,10 @@ void crossbar(const VoxelWordFx<P> word[8], unsigned parity, VoxelWordFx<P> corn
 // crossbar routes the words. The streamed top reads its eight bank ports
 // itself (hls/vizard2_dataflow.hpp, interpolation_stage).
 template <class P, class Banks>
-void gather(const Banks& banks, const BankAccess<P>& acc, VoxelWordFx<P> corner[8]) {
+VOXCAST_HLS_HOST_INLINE void gather(const Banks& banks, const BankAccess<P>& acc,
+                                    VoxelWordFx<P> corner[8]) {
   VoxelWordFx<P> word[8];
-  [[gnu::unused]] bank_read_loop : for (int b = 0; b < 8; ++b) {
+  [[gnu::unused]] bank_read_loop : VOXCAST_HLS_HOST_UNROLL for (int b = 0; b < 8; ++b) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     word[b] = banks.read(b, acc.addr[b]);
   }
@@ -247,28 +251,28 @@ struct Sample {
 // exact sum is evaluated as three rounds of exact lerps v0 + (v1 - v0)·fq
 // (= v0·w0 + v1·w1); any exact order gives the same bits.
 template <class P>
-Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
-                                  const typename InterpolationParams<P>::weight_t fq[3]) {
+VOXCAST_HLS_HOST_INLINE Sample<P> interpolation_processor(
+    const VoxelWordFx<P> corner[8], const typename InterpolationParams<P>::weight_t fq[3]) {
   VOXCAST_HLS_PRAGMA(HLS LATENCY min = lerp_depth max = lerp_depth)
   using I = InterpolationParams<P>;
   typename I::vlerp1_t v1[4];
   typename I::glerp1_t g1[3][4];
-  [[gnu::unused]] x_loop : for (int j = 0; j < 4; ++j) {
+  [[gnu::unused]] x_loop : VOXCAST_HLS_HOST_UNROLL for (int j = 0; j < 4; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const VoxelWordFx<P>& c0 = corner[2 * j];
     const VoxelWordFx<P>& c1 = corner[2 * j + 1];
     v1[j] = c0.value + (c1.value - c0.value) * fq[0];
-    [[gnu::unused]] x_grad_loop : for (int c = 0; c < 3; ++c) {
+    [[gnu::unused]] x_grad_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       g1[c][j] = c0.g[c] + (c1.g[c] - c0.g[c]) * fq[0];
     }
   }
   typename I::vlerp2_t v2[2];
   typename I::glerp2_t g2[3][2];
-  [[gnu::unused]] y_loop : for (int j = 0; j < 2; ++j) {
+  [[gnu::unused]] y_loop : VOXCAST_HLS_HOST_UNROLL for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     v2[j] = v1[2 * j] + (v1[2 * j + 1] - v1[2 * j]) * fq[1];
-    [[gnu::unused]] y_grad_loop : for (int c = 0; c < 3; ++c) {
+    [[gnu::unused]] y_grad_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       g2[c][j] = g1[c][2 * j] + (g1[c][2 * j + 1] - g1[c][2 * j]) * fq[1];
     }
@@ -277,7 +281,7 @@ Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
   const typename I::vlerp3_t v3 = v2[0] + (v2[1] - v2[0]) * fq[2];
   const typename I::value_rnd_t vr = v3;  // Q_RND(·, sf)
   s.value = vr;
-  [[gnu::unused]] z_loop : for (int c = 0; c < 3; ++c) {
+  [[gnu::unused]] z_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename I::glerp3_t g3 = g2[c][0] + (g2[c][1] - g2[c][0]) * fq[2];
     const typename I::gradient_rnd_t gr = g3;  // Q_RND(·, sf)
@@ -288,8 +292,8 @@ Sample<P> interpolation_processor(const VoxelWordFx<P> corner[8],
 
 // §3: the whole unit for one sample position.
 template <class P, class Banks>
-Sample<P> interpolate(const GeometryRegisters<P>& r, const Banks& banks,
-                      const typename GeometryParams<P>::pos_t p[3]) {
+VOXCAST_HLS_HOST_INLINE Sample<P> interpolate(const GeometryRegisters<P>& r, const Banks& banks,
+                                              const typename GeometryParams<P>::pos_t p[3]) {
   const BankAccess<P> acc = address_generator<P>(r, p);
   VoxelWordFx<P> corner[8];
   gather<P>(banks, acc, corner);
@@ -328,12 +332,13 @@ struct BitTrueBanks {
     [[gnu::unused]] bank_ptr_loop : for (int b = 0; b < 8; ++b) bank[b] =
                                          mem.banks[static_cast<std::size_t>(b)].data();
   }
-  VoxelWordFx<P> read(int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
+  VOXCAST_HLS_HOST_INLINE VoxelWordFx<P> read(
+      int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
     using I = InterpolationParams<P>;
     const bittrue::VoxelWord& w = bank[b][addr.to_uint64()];
     VoxelWordFx<P> v;
     v.value = w.value;
-    [[gnu::unused]] field_loop : for (int c = 0; c < 3; ++c) {
+    [[gnu::unused]] field_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
       // The raw component as an integer, then moved below the binary point
       // (exact: the shift drops only the gfb zero fraction bits of t).
       const int_t<I::gb> raw = w.gradient[static_cast<std::size_t>(c)];

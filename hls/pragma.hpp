@@ -24,3 +24,25 @@
 #else
 #define VOXCAST_HLS_HOST_CODE 1
 #endif
+
+// VOXCAST_HLS_HOST_INLINE: marks a unit function of the per-sample path that the
+// host compiler must inline into the engines' sample loop (the hls engine's
+// speed, docs/performance.md "Speed of the hls engine"); without it -O2 leaves
+// most of them as calls, whose fixed-point arguments then pass through memory.
+// Nothing under __SYNTHESIS__: there the unit's own INLINE / LATENCY pragmas
+// decide the hierarchy.
+#if defined(__SYNTHESIS__)
+#define VOXCAST_HLS_HOST_INLINE
+#else
+#define VOXCAST_HLS_HOST_INLINE [[gnu::always_inline]] inline
+#endif
+
+// VOXCAST_HLS_HOST_UNROLL: between a loop's label and its `for`, unrolls the loop
+// completely on the host (a loop the design unrolls with HLS UNROLL, in the
+// per-sample path), so its fixed-point arrays live in registers. Nothing under
+// __SYNTHESIS__, where the loop's own HLS UNROLL pragma applies.
+#if defined(__SYNTHESIS__)
+#define VOXCAST_HLS_HOST_UNROLL
+#else
+#define VOXCAST_HLS_HOST_UNROLL _Pragma("GCC unroll 16")
+#endif

@@ -150,8 +150,8 @@ struct Reflect {
 // §5.1-5.3: world scaling, N = -gw, zero test, major axis, the two exact
 // integer divisions and the cell index.
 template <class P>
-RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
-                  const ReflectanceRegisters<P>& regs) {
+VOXCAST_HLS_HOST_INLINE RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
+                                          const ReflectanceRegisters<P>& regs) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ReflectanceParams<P>;
   using normal_t = typename Params::normal_t;
@@ -162,7 +162,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   magnitude_t mag[3];
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = n complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = mag complete)
-  [[gnu::unused]] rm_world_scale : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] rm_world_scale : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename Params::world_gradient_t gw = g[k] * regs.IS[k];
     n[k] = -gw;
@@ -193,7 +193,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
   const int uv_axis[2] = {a, b};
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = cell complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = frac complete)
-  [[gnu::unused]] rm_cell_divide : for (int j = 0; j < 2; ++j) {
+  [[gnu::unused]] rm_cell_divide : VOXCAST_HLS_HOST_UNROLL for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const typename Params::offset_t off = n[uv_axis[j]] + mag[m];
     const typename Params::den_t off_raw = read_bits(off);
@@ -224,7 +224,7 @@ RmCell<P> rm_cell(const typename ReflectanceParams<P>::gradient_t (&g)[3],
 // along v (= the weighted sum with (1-fu)(1-fv), fu(1-fv), (1-fu)fv, fu·fv; any
 // exact order gives the same bits), one Q_RND to rm_frac_bits.
 template <class P>
-typename ReflectanceParams<P>::entry_t rm_bilerp(
+VOXCAST_HLS_HOST_INLINE typename ReflectanceParams<P>::entry_t rm_bilerp(
     const typename ReflectanceParams<P>::entry_t (&e)[4],
     const typename ReflectanceParams<P>::weight_t& fu,
     const typename ReflectanceParams<P>::weight_t& fv) {
@@ -232,7 +232,7 @@ typename ReflectanceParams<P>::entry_t rm_bilerp(
   using Params = ReflectanceParams<P>;
   typename Params::lerp1_t l1[2];
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = l1 complete)
-  [[gnu::unused]] rm_lerp_u : for (int j = 0; j < 2; ++j) {
+  [[gnu::unused]] rm_lerp_u : VOXCAST_HLS_HOST_UNROLL for (int j = 0; j < 2; ++j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     l1[j] = e[2 * j] + (e[2 * j + 1] - e[2 * j]) * fu;
   }
@@ -245,8 +245,8 @@ typename ReflectanceParams<P>::entry_t rm_bilerp(
 // ReflectanceMap), blended; §5: the nearest cell's entries. The mode is the
 // profile's (rm_bilinear), so only one of the two is instantiated.
 template <class P>
-void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell, Reflect<P>& r,
-             Has<true> /*bilinear*/) {
+VOXCAST_HLS_HOST_INLINE void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell,
+                                     Reflect<P>& r, Has<true> /*bilinear*/) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ReflectanceParams<P>;
   constexpr unsigned side = static_cast<unsigned>(Params::side);
@@ -254,7 +254,7 @@ void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell, Reflect<P>& r,
   typename Params::entry_t d[4], s[4];
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = d complete)
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = s complete)
-  [[gnu::unused]] rm_corner_read : for (int c = 0; c < 4; ++c) {
+  [[gnu::unused]] rm_corner_read : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 4; ++c) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const unsigned k = cell.index.to_uint() + offset[c];
     d[c] = map.diffuse[k];
@@ -264,8 +264,8 @@ void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell, Reflect<P>& r,
   r.S = rm_bilerp<P>(s, cell.fu, cell.fv);
 }
 template <class P>
-void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell, Reflect<P>& r,
-             Has<false> /*bilinear*/) {
+VOXCAST_HLS_HOST_INLINE void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell,
+                                     Reflect<P>& r, Has<false> /*bilinear*/) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   r.D = map.diffuse[cell.index.to_uint()];
   r.S = map.specular[cell.index.to_uint()];
@@ -276,8 +276,8 @@ void rm_read(const ReflectanceMap<P>& map, const RmCell<P>& cell, Reflect<P>& r,
 // gradient component type; it converts exactly into gradient_t when it has
 // sample_frac_bits fraction bits (checked below) and fits.
 template <class P, class G>
-Reflect<P> reflect(const ReflectanceMap<P>& map, const ReflectanceRegisters<P>& regs,
-                   const G (&g)[3]) {
+VOXCAST_HLS_HOST_INLINE Reflect<P> reflect(const ReflectanceMap<P>& map,
+                                           const ReflectanceRegisters<P>& regs, const G (&g)[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ReflectanceParams<P>;
   static_assert(G::width - fixed_iwidth<G>::value == Params::sf,

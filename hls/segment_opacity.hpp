@@ -138,8 +138,8 @@ SegmentWeights<P> segment_weights(const SegmentOpacityTables<P>& t, const RaySet
 
 // The weight of sample k of a ray of n samples.
 template <class P>
-typename SegmentOpacityParams<P>::weight_t sample_weight(const SegmentWeights<P>& w,
-                                                         std::uint64_t k, std::uint64_t n) {
+VOXCAST_HLS_HOST_INLINE typename SegmentOpacityParams<P>::weight_t sample_weight(
+    const SegmentWeights<P>& w, std::uint64_t k, std::uint64_t n) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   typename SegmentOpacityParams<P>::weight_t one = 1;
   if (k == 0) return w.first;
@@ -152,7 +152,7 @@ typename SegmentOpacityParams<P>::weight_t sample_weight(const SegmentWeights<P>
 // else U(1 - 2^-y, ab) with y = Q_RND(w·tau2[addr], ab + g) and
 // 2^-y = 2^-min(floor(y), ab+2) · lerp of the ROM at frac(y).
 template <class P>
-typename ClassificationParams<P>::alpha_t segment_opacity(
+VOXCAST_HLS_HOST_INLINE typename ClassificationParams<P>::alpha_t segment_opacity(
     const SegmentOpacityTables<P>& t, const typename ClassificationParams<P>::addr_t& addr,
     const typename ClassificationParams<P>::alpha_t& alpha_c,
     const typename SegmentOpacityParams<P>::weight_t& w) {

@@ -49,14 +49,15 @@ struct ShadedColor {
 // §6: I = Q_RND(ka·1 + kd·D + ks·S, shade_bits); c = U(colour · I, shade_bits) per
 // channel. Unshaded (emission-absorption) mode: c = U(colour, shade_bits).
 template <class P>
-ShadedColor<P> shade(const ClassEntry<P>& e, const Reflect<P>& r, bool shaded) {
+VOXCAST_HLS_HOST_INLINE ShadedColor<P> shade(const ClassEntry<P>& e, const Reflect<P>& r,
+                                             bool shaded) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ShaderParams<P>;
   const typename Params::intensity_t intensity = e.ka + e.kd * r.D + e.ks * r.S;
   const typename ClassificationParams<P>::color_t colour[3] = {e.r, e.g, e.b};
   VOXCAST_HLS_PRAGMA(HLS ARRAY_PARTITION variable = colour complete)
   ShadedColor<P> out;
-  [[gnu::unused]] shade_channels : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] shade_channels : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     if (shaded) {
       out.c[k] = colour[k] * intensity;

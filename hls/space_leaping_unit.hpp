@@ -115,12 +115,12 @@ struct MinMaxMemory {
 
 // The block coordinates of the sample at p: i0 >> lb per axis.
 template <class P>
-void block_coords(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
-                  const typename GeometryParams<P>::pos_t p[3],
-                  typename LeapParams<P>::bcoord_t b[3]) {
+VOXCAST_HLS_HOST_INLINE void block_coords(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
+                                          const typename GeometryParams<P>::pos_t p[3],
+                                          typename LeapParams<P>::bcoord_t b[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using G = GeometryParams<P>;
-  [[gnu::unused]] block_axis_loop : for (int k = 0; k < 3; ++k) {
+  [[gnu::unused]] block_axis_loop : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     typename InterpolationParams<P>::cpos_t cp;
     const typename G::coord_t i0 = sample_cell<P>(r, p[k], k, cp);
@@ -130,8 +130,8 @@ void block_coords(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
 
 // The block memory address of block coordinates b, x fastest.
 template <class P>
-typename LeapParams<P>::block_addr_t block_address(const LeapRegisters<P>& lr,
-                                                   const typename LeapParams<P>::bcoord_t b[3]) {
+VOXCAST_HLS_HOST_INLINE typename LeapParams<P>::block_addr_t block_address(
+    const LeapRegisters<P>& lr, const typename LeapParams<P>::bcoord_t b[3]) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using L = LeapParams<P>;
   const typename L::baddr_wide_t addr = b[0] + b[1] * lr.BX + b[2] * lr.BXY;
@@ -140,7 +140,7 @@ typename LeapParams<P>::block_addr_t block_address(const LeapRegisters<P>& lr,
 
 // Whether every classification entry a value in [e.lo, e.hi] can address has alpha = 0.
 template <class P>
-bool block_empty(const LeapRegisters<P>& lr, const MinMaxEntry<P>& e) {
+VOXCAST_HLS_HOST_INLINE bool block_empty(const LeapRegisters<P>& lr, const MinMaxEntry<P>& e) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using C = ClassificationParams<P>;
   const typename C::value_t lo = e.lo;  // exact: an integer in the value format
@@ -163,12 +163,13 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
   using G = GeometryParams<P>;
   using L = LeapParams<P>;
   std::uint64_t run = 1;
-  [[gnu::unused]] leap_search_loop : for (int j = L::leap_bits - 1; j >= 0; --j) {
+  [[gnu::unused]] leap_search_loop
+      : VOXCAST_HLS_HOST_UNROLL for (int j = L::leap_bits - 1; j >= 0; --j) {
     VOXCAST_HLS_PRAGMA(HLS UNROLL)
     const std::uint64_t add = std::uint64_t{1} << j;
     if (run + add > remaining) continue;  // past the ray's last sample
     typename G::pos_t cand[3];
-    [[gnu::unused]] leap_axis_loop : for (int k = 0; k < 3; ++k) {
+    [[gnu::unused]] leap_axis_loop : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
       VOXCAST_HLS_PRAGMA(HLS UNROLL)
       typename L::wide_step_t ws = s[k];
       ws <<= j;  // exact: 2^j·s
@@ -178,7 +179,7 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
     typename L::bcoord_t cb[3];
     block_coords<P>(r, lr, cand, cb);
     if (cb[0] == b[0] && cb[1] == b[1] && cb[2] == b[2]) {
-      [[gnu::unused]] leap_take_loop : for (int k = 0; k < 3; ++k) {
+      [[gnu::unused]] leap_take_loop : VOXCAST_HLS_HOST_UNROLL for (int k = 0; k < 3; ++k) {
         VOXCAST_HLS_PRAGMA(HLS UNROLL)
         p[k] = cand[k];
       }
@@ -191,9 +192,11 @@ std::uint64_t leap_run(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr
 // The block look-up of the sample at p: its coordinates (into b) and whether
 // the block is empty (one block-memory read, two prefix-table reads).
 template <class P>
-bool sample_block_empty(const GeometryRegisters<P>& r, const LeapRegisters<P>& lr,
-                        const MinMaxMemory<P>& mm, const typename GeometryParams<P>::pos_t p[3],
-                        typename LeapParams<P>::bcoord_t b[3]) {
+VOXCAST_HLS_HOST_INLINE bool sample_block_empty(const GeometryRegisters<P>& r,
+                                                const LeapRegisters<P>& lr,
+                                                const MinMaxMemory<P>& mm,
+                                                const typename GeometryParams<P>::pos_t p[3],
+                                                typename LeapParams<P>::bcoord_t b[3]) {
   VOXCAST_HLS_PRAGMA(HLS LATENCY min = leap_lookup_depth max = leap_lookup_depth)
   block_coords<P>(r, lr, p, b);
   return block_empty<P>(lr, mm.block[block_address<P>(lr, b).to_uint()]);

@@ -148,40 +148,44 @@ struct StatsCounter : NullTracer {
 // MIP (§7 MIP): the maximum register takes the sample; true if the frame is a
 // MIP frame (the sample is then done).
 template <class P, class Pos, class Tracer>
-bool mip_sample(bool mip, typename CompositorParams<P>::value_t& peak, const Pos& p,
-                const Sample<P>& s, Tracer& tracer, Has<true>) {
+VOXCAST_HLS_HOST_INLINE bool mip_sample(bool mip, typename CompositorParams<P>::value_t& peak,
+                                        const Pos& p, const Sample<P>& s, Tracer& tracer,
+                                        Has<true>) {
   if (!mip) return false;
   mip_update<P>(peak, s.value);
   tracer.sample(p, s, peak);
   return true;
 }
 template <class P, class Pos, class Tracer>
-bool mip_sample(bool, typename CompositorParams<P>::value_t&, const Pos&, const Sample<P>&,
-                Tracer&, Has<false>) {
+VOXCAST_HLS_HOST_INLINE bool mip_sample(bool, typename CompositorParams<P>::value_t&, const Pos&,
+                                        const Sample<P>&, Tracer&, Has<false>) {
   return false;
 }
 
 // §5: the reflectance map's lookup for a shaded frame; (0, 0) otherwise.
 template <class P, class Map, class Regs>
-Reflect<P> reflect_for(const Map& map, const Regs& regs, bool shaded, const Sample<P>& s,
-                       Has<true>) {
+VOXCAST_HLS_HOST_INLINE Reflect<P> reflect_for(const Map& map, const Regs& regs, bool shaded,
+                                               const Sample<P>& s, Has<true>) {
   Reflect<P> r{0, 0};
   if (shaded) r = reflect<P>(map, regs, s.g);
   return r;
 }
 template <class P, class Map, class Regs>
-Reflect<P> reflect_for(const Map&, const Regs&, bool, const Sample<P>&, Has<false>) {
+VOXCAST_HLS_HOST_INLINE Reflect<P> reflect_for(const Map&, const Regs&, bool, const Sample<P>&,
+                                               Has<false>) {
   return Reflect<P>{0, 0};
 }
 
 // §7.3: the termination comparator; a design without it marches every ray to
 // its end.
 template <class P>
-bool ray_goes_on(const Accumulator<P>& acc, const CompositorRegisters<P>& regs, Has<true>) {
+VOXCAST_HLS_HOST_INLINE bool ray_goes_on(const Accumulator<P>& acc,
+                                         const CompositorRegisters<P>& regs, Has<true>) {
   return !ert_reached<P>(acc, regs);
 }
 template <class P>
-bool ray_goes_on(const Accumulator<P>&, const CompositorRegisters<P>&, Has<false>) {
+VOXCAST_HLS_HOST_INLINE bool ray_goes_on(const Accumulator<P>&, const CompositorRegisters<P>&,
+                                         Has<false>) {
   return true;
 }
 
@@ -190,10 +194,10 @@ bool ray_goes_on(const Accumulator<P>&, const CompositorRegisters<P>&, Has<false
 // reflectance map `shaded` is the constant false (frame_is_shaded), so
 // c = U(colour) (§6) and the intensity products inside shade() have no fan-out.
 template <class P, class U>
-ShadedColor<P> shade_sample(const UnitState<U::reflectance_map, ReflectanceMap<P>>& map,
-                            const UnitState<U::reflectance_map, ReflectanceRegisters<P>>& regs,
-                            bool shaded, const ClassEntry<P>& e, const Sample<P>& s,
-                            Reflect<P>& r) {
+VOXCAST_HLS_HOST_INLINE ShadedColor<P> shade_sample(
+    const UnitState<U::reflectance_map, ReflectanceMap<P>>& map,
+    const UnitState<U::reflectance_map, ReflectanceRegisters<P>>& regs, bool shaded,
+    const ClassEntry<P>& e, const Sample<P>& s, Reflect<P>& r) {
   r = reflect_for<P>(map, regs, shaded, s, Has<can_shade(units_of<U>())>{});
   return shade<P>(e, r, shaded);
 }
@@ -201,8 +205,10 @@ ShadedColor<P> shade_sample(const UnitState<U::reflectance_map, ReflectanceMap<P
 // §7.1-7.3: the over operator for a classified, shaded sample with alpha != 0;
 // false once ERT ends the ray.
 template <class P, class U>
-bool composite_step(const CompositorRegisters<P>& regs, const ShadedColor<P>& c,
-                    const typename ClassificationParams<P>::alpha_t& alpha, Accumulator<P>& acc) {
+VOXCAST_HLS_HOST_INLINE bool composite_step(const CompositorRegisters<P>& regs,
+                                            const ShadedColor<P>& c,
+                                            const typename ClassificationParams<P>::alpha_t& alpha,
+                                            Accumulator<P>& acc) {
   composite<P>(acc, c, alpha);
   return ray_goes_on<P>(acc, regs, Has<U::ert>{});
 }
@@ -231,35 +237,37 @@ using SampleWeight =
     UnitState<U::partial_segments, typename SegmentOpacityParams<P>::weight_t>;
 
 template <class P>
-typename SegmentOpacityParams<P>::weight_t weight_of_sample(const SegmentWeights<P>& w,
-                                                            std::uint64_t k, std::uint64_t n,
-                                                            Has<true>) {
+VOXCAST_HLS_HOST_INLINE typename SegmentOpacityParams<P>::weight_t weight_of_sample(
+    const SegmentWeights<P>& w, std::uint64_t k, std::uint64_t n, Has<true>) {
   return sample_weight<P>(w, k, n);
 }
 template <class P, class W>
-AbsentUnit weight_of_sample(const W&, std::uint64_t, std::uint64_t, Has<false>) {
+VOXCAST_HLS_HOST_INLINE AbsentUnit weight_of_sample(const W&, std::uint64_t, std::uint64_t,
+                                                    Has<false>) {
   return AbsentUnit{};
 }
 
 template <class P, class Tables>
-ClassEntry<P> weigh_entry(const Tables& t, const typename SegmentOpacityParams<P>::weight_t& w,
-                          const typename ClassificationParams<P>::value_t& value,
-                          ClassEntry<P> e, Has<true>) {
+VOXCAST_HLS_HOST_INLINE ClassEntry<P> weigh_entry(
+    const Tables& t, const typename SegmentOpacityParams<P>::weight_t& w,
+    const typename ClassificationParams<P>::value_t& value, ClassEntry<P> e, Has<true>) {
   e.alpha = segment_opacity<P>(t, class_address<P>(value), e.alpha, w);
   return e;
 }
 template <class P, class Tables, class W>
-ClassEntry<P> weigh_entry(const Tables&, const W&, const typename ClassificationParams<P>::value_t&,
-                          ClassEntry<P> e, Has<false>) {
+VOXCAST_HLS_HOST_INLINE ClassEntry<P> weigh_entry(const Tables&, const W&,
+                                                  const typename ClassificationParams<P>::value_t&,
+                                                  ClassEntry<P> e, Has<false>) {
   return e;
 }
 
 // §4-7: classification, shading and the over operator for one sample of
 // segment weight w (§7a); false once ERT ends the ray.
 template <class P, class U, class Pos, class Tracer>
-bool composite_sample(const FrameState<P, U>& f, bool shaded, const SampleWeight<P, U>& w,
-                      const Pos& p, const Sample<P>& s, Accumulator<P>& acc, Tracer& tracer,
-                      Has<true>) {
+VOXCAST_HLS_HOST_INLINE bool composite_sample(const FrameState<P, U>& f, bool shaded,
+                                              const SampleWeight<P, U>& w, const Pos& p,
+                                              const Sample<P>& s, Accumulator<P>& acc,
+                                              Tracer& tracer, Has<true>) {
   const ClassEntry<P> e = weigh_entry<P>(f.segments, w, s.value,
                                          classify<P>(f.class_table, s.value),
                                          Has<U::partial_segments>{});
@@ -274,8 +282,10 @@ bool composite_sample(const FrameState<P, U>& f, bool shaded, const SampleWeight
   return goes_on;
 }
 template <class P, class U, class Pos, class Tracer>
-bool composite_sample(const FrameState<P, U>&, bool, const SampleWeight<P, U>&, const Pos&,
-                      const Sample<P>&, Accumulator<P>&, Tracer&, Has<false>) {
+VOXCAST_HLS_HOST_INLINE bool composite_sample(const FrameState<P, U>&, bool,
+                                              const SampleWeight<P, U>&, const Pos&,
+                                              const Sample<P>&, Accumulator<P>&, Tracer&,
+                                              Has<false>) {
   return true;
 }
 

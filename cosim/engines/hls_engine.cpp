@@ -6,6 +6,7 @@
 
 #include "cosim/engines/engines.hpp"
 #include "hls/host_frame.hpp"
+#include "hls/host_march.hpp"
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 
@@ -24,15 +25,21 @@ template <class P>
 ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memory,
                        int threads, ref::FrameStats* stats) {
   const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
-  const hls::host::BitTrueBanks<P> banks(memory);
+  const auto empty = hls::host::empty_blocks<P>(fs, memory);  // hls/host_march.hpp
   const int w = fs.regs.width, h = fs.regs.height;
   std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   std::vector<hls::RowStats> rows(static_cast<std::size_t>(h));
   ref::parallel_for(
       h,
       [&](int y) {
-        hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(),
-                            &rows[static_cast<std::size_t>(y)]);
+        // Counted on this thread's stack, then stored: rows[y] and rows[y + 1] share a
+        // cache line, and the other thread is rendering row y + 1.
+        hls::RowStats row;
+        hls::host::EngineBanks<P> banks(memory);
+        banks.blocks = empty.get();
+        banks.skipped = &row.samples;
+        hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(), &row);
+        rows[static_cast<std::size_t>(y)] = row;
       },
       threads);
   ref::QuantImage img(w, h, P::out_bits);

@@ -51,7 +51,16 @@ struct VoxelWord {
 struct VoxelMemory {
   std::array<int, 3> dims{};
   std::array<std::vector<VoxelWord>, 8> banks;
+  // The volume's min-max blocks (docs/leaping.md) of the stored values, which the value
+  // fields hold << value_shift, built with the memory (make_voxel_memory) at
+  // kEngineLeapBlockLog2: what an engine reads that skips empty space on its own when the
+  // scene does not ask for space leaping (the hls engine, hls/host_march.hpp; the image
+  // is the same bits). Null when the memory was not made by make_voxel_memory.
+  std::shared_ptr<const ref::MinMaxBlocks> leap_blocks;
+  int value_shift = 0;
 };
+// The block edge (log2) of VoxelMemory::leap_blocks: 4^3 cells.
+inline constexpr int kEngineLeapBlockLog2 = 2;
 
 // One classification-table entry, each field an unsigned fraction (§4).
 struct ClassEntry {

@@ -240,6 +240,9 @@ VoxelMemory make_voxel_memory(const PrecisionProfile& p, const ref::Volume& volu
               static_cast<std::int32_t>(g < gmin ? gmin : (g > gmax ? gmax : g));
         }
       }
+  mem.leap_blocks = std::make_shared<const ref::MinMaxBlocks>(
+      ref::make_min_max_blocks(volume, kEngineLeapBlockLog2));
+  mem.value_shift = shift;
   return mem;
 }
 
