@@ -58,7 +58,9 @@ TEST(Sweep, AccuracyFiguresEqualCosimsForTheSamePoint) {
     const Command c = run("cosim " + tiny_scene() + " --out " + out.string() +
                           " --set precision.profile=" + p.profile +
                           " --set precision.weight_bits=" + p.weight_bits);
-    ASSERT_EQ(c.status, 0) << c.output;
+    // A profile the hls kernels are not compiled for: the bit-true engine
+    // measures it, and cosim says not every engine ran (exit status 8).
+    ASSERT_EQ(c.status, std::string(p.engine) == "hls" ? 0 : 8) << c.output;
     const nlohmann::json truth = json_of(out / "report.json").at("truth");
     const nlohmann::json& row = row_with(results, {"precision.profile", "precision.weight_bits"},
                                          {p.profile, p.weight_bits})

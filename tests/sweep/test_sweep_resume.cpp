@@ -4,6 +4,7 @@
 // and ends byte-identical to an uninterrupted run. The truth is kept on disk,
 // so a resumed run or a second shard sharing the folder renders it no more.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -61,13 +62,16 @@ std::size_t resumed_count(const std::string& output) {
 
 class SweepResume : public ::testing::Test {
  protected:
+  // ctest runs each test in its own process, two at a time: each process
+  // makes its own uninterrupted run to compare with.
   static void SetUpTestSuite() {
-    whole_ = fs::temp_directory_path() / "voxcast_resume_whole";
+    whole_ = fs::temp_directory_path() / ("voxcast_resume_whole_" + std::to_string(getpid()));
     fs::remove_all(whole_);
     const Command r = voxcast::test::run_voxcast(sweep_args(whole_));
     ASSERT_EQ(r.status, 0) << r.output;
     ASSERT_EQ(journaled(whole_), 8u);
   }
+  static void TearDownTestSuite() { fs::remove_all(whole_); }
   static fs::path whole_;
 
   void resume_and_compare(const fs::path& out, const std::string& signal, int status) {
