@@ -29,19 +29,25 @@
 // host compiler must inline into the engines' sample loop (the hls engine's
 // speed, docs/performance.md "Speed of the hls engine"); without it -O2 leaves
 // most of them as calls, whose fixed-point arguments then pass through memory.
-// Nothing under __SYNTHESIS__: there the unit's own INLINE / LATENCY pragmas
-// decide the hierarchy.
-#if defined(__SYNTHESIS__)
-#define VOXCAST_HLS_HOST_INLINE
+// Only where VOXCAST_HLS_HOST_FAST is defined: the engines' own instantiations
+// (cosim/engines/hls_engine.cpp, rtl_model/engine.cpp; CMake sets it on those
+// files for the default fixed-point class). Everywhere else (the dialect and
+// C-simulation checks, the vendors' headers, the unit tests) the forced
+// inlining only costs compile time: it made the Xilinx ap_fixed build 10x
+// slower (docs/extremes.md, "CI steps"). Nothing under __SYNTHESIS__: there
+// the unit's own INLINE / LATENCY pragmas decide the hierarchy.
+#if defined(__SYNTHESIS__) || !defined(VOXCAST_HLS_HOST_FAST)
+#define VOXCAST_HLS_HOST_INLINE inline
 #else
 #define VOXCAST_HLS_HOST_INLINE [[gnu::always_inline]] inline
 #endif
 
 // VOXCAST_HLS_HOST_UNROLL: between a loop's label and its `for`, unrolls the loop
 // completely on the host (a loop the design unrolls with HLS UNROLL, in the
-// per-sample path), so its fixed-point arrays live in registers. Nothing under
-// __SYNTHESIS__, where the loop's own HLS UNROLL pragma applies.
-#if defined(__SYNTHESIS__)
+// per-sample path), so its fixed-point arrays live in registers. Under the same
+// condition as VOXCAST_HLS_HOST_INLINE; nothing under __SYNTHESIS__, where the
+// loop's own HLS UNROLL pragma applies.
+#if defined(__SYNTHESIS__) || !defined(VOXCAST_HLS_HOST_FAST)
 #define VOXCAST_HLS_HOST_UNROLL
 #else
 #define VOXCAST_HLS_HOST_UNROLL _Pragma("GCC unroll 16")
