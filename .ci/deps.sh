@@ -16,9 +16,11 @@ VOXCAST_PACKAGES=(
 
 # What only the test suite needs (.ci/run sets VOXCAST_TEST_DEPS=1): Debian's
 # headless Chromium, which renders the HTML report pages in the test
-# Html.ChromiumRendersTheCosimPage (about 45 s to install, docs/extremes.md).
+# Html.ChromiumRendersTheCosimPage (about 45 s to install, docs/extremes.md);
+# and Slurm with munge, which the `cluster` step starts on this machine alone
+# (.ci/cluster.sh; about 15 s to install).
 if [ "${VOXCAST_TEST_DEPS:-0}" = 1 ]; then
-  VOXCAST_PACKAGES+=(chromium)
+  VOXCAST_PACKAGES+=(chromium slurmctld slurmd slurm-client munge)
 fi
 
 missing=()

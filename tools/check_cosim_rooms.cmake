@@ -2,8 +2,8 @@
 #
 # cosim/'s rooms and the one way their dependencies point (README, "Layout"):
 #
-#   reports  <-  engines  <-  hardware  <-  explore
-#                         <-  verify
+#   reports  <-  engines  <-  hardware  <-  explore  <-  cluster
+#                         <-  verify   <------------------'
 #   commands uses every room; main.cpp dispatches to commands (and catches the
 #   precision guard's error from engines).
 #
@@ -20,9 +20,10 @@ set(allowed_engines  reports engines)
 set(allowed_hardware reports engines hardware)
 set(allowed_verify   reports engines verify)
 set(allowed_explore  reports engines hardware explore)
-set(allowed_commands reports engines hardware verify explore commands)
+set(allowed_cluster  reports engines hardware verify explore cluster)
+set(allowed_commands reports engines hardware verify explore cluster commands)
 set(allowed_main     commands engines)
-set(rooms reports engines hardware verify explore commands)
+set(rooms reports engines hardware verify explore cluster commands)
 
 file(GLOB_RECURSE sources RELATIVE "${ROOT}" "${ROOT}/*.cpp" "${ROOT}/*.hpp")
 list(SORT sources)

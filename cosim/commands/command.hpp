@@ -5,8 +5,9 @@
 //
 // A subcommand's run returns its exit status on the paths that are not errors
 // (README, "Exit status"): 0, or its own verdict (3 cosim: the engines differ;
-// 4 regress / constraints: golden files differ; 5 tune: no point meets the
-// target; 7 fuzz-scenes: findings; 8 cosim: not every engine ran). Errors are exceptions (voxcast::Error: 1;
+// 4 regress / constraints: golden files differ (sweep-status: a cluster regress); 5 tune: no point meets the
+// target; 7 fuzz-scenes: findings; 8 cosim: not every engine ran; 9 sweep-status: a job
+// failed or never ran; 10 sweep-status: jobs still pending or running). Errors are exceptions (voxcast::Error: 1;
 // PrecisionHazardError: 6), caught in one place in main.
 #pragma once
 
@@ -33,6 +34,7 @@ Subcommand add_render(CLI::App& voxcast);
 Subcommand add_cosim(CLI::App& voxcast);
 Subcommand add_sweep(CLI::App& voxcast);
 Subcommand add_sweep_merge(CLI::App& voxcast);
+Subcommand add_sweep_status(CLI::App& voxcast);
 Subcommand add_regress(CLI::App& voxcast);
 Subcommand add_paper(CLI::App& voxcast);
 Subcommand add_bench(CLI::App& voxcast);

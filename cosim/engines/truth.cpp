@@ -103,6 +103,11 @@ std::shared_ptr<const ref::Image> TruthCache::get(const ref::Scene& scene, const
       const std::string path = dir_.empty() ? std::string() : truth_file(dir_, key);
       std::optional<ref::Image> image;
       if (!path.empty()) image = read_truth_file(path, key);
+      if (!image && !render_missing_)
+        throw TruthMissingError(
+            "the truth " + (path.empty() ? std::string("image") : path) +
+            " is not in the truth cache, and this run only reads it (--truth-from-cache; on a "
+            "cluster the truth job renders it: did it finish?)");
       if (!image) {
         image = render_truth(scene, sv, t);
         {
@@ -131,6 +136,11 @@ std::shared_ptr<const ref::Image> TruthCache::get(const ref::Scene& scene, const
 std::size_t TruthCache::renders() const {
   const std::lock_guard lock(mutex_);
   return renders_;
+}
+
+std::size_t TruthCache::images() const {
+  const std::lock_guard lock(mutex_);
+  return images_.size();
 }
 
 namespace {

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "cosim/engines/engines.hpp"
+#include "refmodel/error.hpp"
 #include "refmodel/render/image.hpp"
 #include "refmodel/scene/scene.hpp"
 
@@ -70,19 +71,33 @@ ref::Image render_truth_with_progress(const ref::Scene& scene, const SceneVolume
 // rendering it again (a file whose key differs, a hash collision, is not
 // used). Files are written whole and renamed into place: a run stopped
 // mid-write leaves no truncated truth.
+//
+// Reading only (render_missing = false; sweep --truth-from-cache, the shards of
+// a cluster run after its truth job): a truth missing from the folder is a
+// TruthMissingError instead of a render.
 class TruthCache {
  public:
   TruthCache() = default;
-  explicit TruthCache(std::string dir) : dir_(std::move(dir)) {}
+  explicit TruthCache(std::string dir, bool render_missing = true)
+      : dir_(std::move(dir)), render_missing_(render_missing) {}
   std::shared_ptr<const ref::Image> get(const ref::Scene& scene, const SceneVolume& sv,
                                         const TruthSettings& t);
   std::size_t renders() const;  // truths this cache rendered (not read from disk)
+  std::size_t images() const;   // distinct truths asked for (rendered or read)
 
  private:
   std::string dir_;
+  bool render_missing_ = true;
   mutable std::mutex mutex_;
   std::map<std::string, std::shared_future<std::shared_ptr<const ref::Image>>> images_;
   std::size_t renders_ = 0;
+};
+
+// A truth a read-only TruthCache does not hold: the run cannot go on without
+// it (a sweep's point catches voxcast::Error as "infeasible"; not this).
+class TruthMissingError : public Error {
+ public:
+  using Error::Error;
 };
 
 // The truth file of `key` in `dir` (DIR/HASH.truth), and its reading and

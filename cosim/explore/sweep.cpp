@@ -181,6 +181,8 @@ PointOutcome run_point(const Plan& plan, std::size_t index, int threads, Caches&
         throw std::logic_error("column group " + g.name + " returned the wrong number of cells");
       for (Cell& c : cells) out.row.cells.push_back(std::move(c));
     }
+  } catch (const TruthMissingError&) {
+    throw;  // not the point's: the run cannot go on
   } catch (const Error& e) {
     // The point cannot run (a width that cannot hold the volume, ...): its row
     // says why; the rest of the sweep goes on.
@@ -439,6 +441,59 @@ const std::vector<Front>& pareto_fronts() {
   return fronts;
 }
 
+namespace {
+
+// --truth-only: each point's truth into the cache, in parallel over --jobs;
+// points whose widths cannot hold the scene need none (their rows say
+// "infeasible" without one).
+SweepSummary render_truths(const Plan& plan, const SweepOptions& o,
+                           const std::vector<std::size_t>& points, const std::string& cache_dir) {
+  const auto t0 = StopwatchClock::now();
+  Caches caches{{}, TruthCache(cache_dir)};
+  const int threads = std::max(1, ref::worker_count(0) / o.jobs);
+  std::vector<std::exception_ptr> failures(points.size());
+  Progress progress("truth", points.size(), o.progress);
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t t = next.fetch_add(1); t < points.size(); t = next.fetch_add(1)) {
+      ref::Scene scene = plan.scene(points[t]);
+      scene.render.threads = threads;
+      try {
+        const std::shared_ptr<const SceneVolume> sv =
+            caches.volumes.get(volume_key(scene), [&] { return load_scene_volume(scene); });
+        bool feasible = true;
+        try {
+          check_fixed_point(scene, *sv, false);
+        } catch (const Error&) {
+          feasible = false;
+        }
+        if (feasible) caches.truths.get(scene, *sv, plan.truth);
+      } catch (...) {
+        failures[t] = std::current_exception();
+      }
+      progress.step();
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(points.size())); ++j)
+      pool.emplace_back(worker);
+    worker();
+  }
+  for (const std::exception_ptr& f : failures)
+    if (f) std::rethrow_exception(f);
+  SweepSummary s;
+  s.truth_only = true;
+  s.points_total = plan.size();
+  s.truth_images = caches.truths.images();
+  s.truth_renders = caches.truths.renders();
+  s.written.push_back(cache_dir);
+  s.seconds = seconds_since(t0);
+  return s;
+}
+
+}  // namespace
+
 SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   if (o.jobs < 1 || o.jobs > 256) throw Error("sweep: --jobs must be in [1, 256]");
   if (o.out_dir.empty()) throw Error("sweep: --out DIR is required");
@@ -453,12 +508,20 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   for (std::size_t i = 0; i < plan.size(); ++i)
     if (o.shard.owns(i)) mine.push_back(i);
 
+  const std::string cache_dir =
+      o.truth_cache.empty() ? (fs::path(o.out_dir) / "truth").string() : o.truth_cache;
+  if (o.truth_only) {
+    if (o.truth_from_cache) throw Error("sweep: --truth-only renders the truths; --truth-from-cache only reads them");
+    return render_truths(plan, o, mine, cache_dir);
+  }
+
   Table table;
   table.meta = sweep_meta(plan, o.shard);
   table.columns = table_columns(plan);
   const fs::path journal = points_dir(o);
   const nlohmann::json identity = sweep_identity(plan, table.columns);
-  if (o.resume)
+  const bool resume = o.resume || (o.resume_if_started && fs::exists(journal / "sweep.json"));
+  if (resume)
     check_journal(journal, identity);
   else
     start_journal(journal, identity);
@@ -471,7 +534,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
   std::size_t resumed = 0;
   for (std::size_t k = 0; k < mine.size(); ++k) {
     std::optional<PointOutcome> p;
-    if (o.resume) p = read_point(journal, mine[k], table.columns.size());
+    if (resume) p = read_point(journal, mine[k], table.columns.size());
     if (p) {
       outcomes[k] = std::move(*p);
       ++resumed;
@@ -479,8 +542,7 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
       todo.push_back(k);
     }
   }
-  Caches caches{{}, TruthCache(o.truth_cache.empty() ? (fs::path(o.out_dir) / "truth").string()
-                                                     : o.truth_cache)};
+  Caches caches{{}, TruthCache(cache_dir, !o.truth_from_cache)};
   std::vector<std::exception_ptr> failures(mine.size());
   const int threads = std::max(1, ref::worker_count(0) / o.jobs);
   // Journal writes take this lock; a stop takes it for good before it counts,
@@ -575,7 +637,11 @@ std::vector<std::string> write_outputs(const Table& table, const std::string& di
 
 void print_sweep_summary(std::ostream& os, const SweepSummary& s) {
   os << std::fixed << std::setprecision(1);
-  if (s.merged)
+  if (s.truth_only)
+    os << "truths   " << s.truth_images << " image" << (s.truth_images == 1 ? "" : "s")
+       << " for the " << s.points_total << " points in " << s.seconds << " s (" << s.truth_renders
+       << " rendered, " << s.truth_images - s.truth_renders << " already in the cache)\n";
+  else if (s.merged)
     os << "merged   " << s.points << " points in " << s.seconds << " s\n";
   else
     os << "points   " << s.points << " of " << s.points_total << " in " << s.seconds << " s ("

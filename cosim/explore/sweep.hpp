@@ -34,6 +34,15 @@ struct SweepOptions {
   // --truth-cache: the folder of truths on disk (TruthCache), shared by the
   // shards and later runs of a sweep; empty = DIR/truth.
   std::string truth_cache = {};
+  // --truth-only: render the truth of every point into the truth cache and
+  // nothing else (a cluster run's truth job); no journal, no table.
+  bool truth_only = false;
+  // --truth-from-cache: read every truth from the cache, never render one (a
+  // cluster run's shards); a missing truth ends the run with an error.
+  bool truth_from_cache = false;
+  // --resume-if-started: --resume when OUT holds a journal, else a fresh run
+  // (a cluster's shard, which may run again after a failure).
+  bool resume_if_started = false;
 };
 
 // What a column group sees of one point, after the design's image is rendered.
@@ -67,6 +76,8 @@ struct SweepSummary {
   std::size_t points_resumed = 0; // of those, read back from DIR/points (--resume)
   std::size_t points_total = 0;   // points of the whole sweep
   std::size_t truth_renders = 0;  // distinct truth images rendered (sweep; 0 for a merge)
+  std::size_t truth_images = 0;   // distinct truth images the points need (--truth-only)
+  bool truth_only = false;
   bool merged = false;
   double seconds = 0.0;
   std::vector<std::string> written;

@@ -11,7 +11,10 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <map>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -204,47 +207,160 @@ CaseResult run_case(const RegressOptions& o, const ref::Scene& scene, const Scen
 
 }  // namespace
 
-int run_regress(const RegressOptions& o, std::ostream& os) {
+namespace {
+
+// One case of the regression: a scene under a preset (VIRIM scenes: their own
+// "virim" widths, one case).
+struct RegressCase {
+  fs::path scene;
+  std::string name;     // the scene file's stem
+  std::string profile;
+  bool virim = false;
+};
+
+// Every case in the order a local run prints them: scenes by name, then the
+// presets in the order given. Only the scene files are read (no volume).
+std::vector<RegressCase> list_cases(const RegressOptions& o) {
   std::vector<fs::path> scenes;
   if (!fs::is_directory(o.scenes_dir)) throw Error(o.scenes_dir + ": not a folder of scenes");
   for (const auto& e : fs::directory_iterator(o.scenes_dir))
     if (e.path().extension() == ".toml") scenes.push_back(e.path());
   std::sort(scenes.begin(), scenes.end());
   if (scenes.empty()) throw Error(o.scenes_dir + ": no *.toml scenes");
-  if (!o.junit_path.empty()) make_parent_dir(o.junit_path);  // before the work, not after
-  JUnitSuite junit{"voxcast regress", {}};
-  const auto record = [&junit](const CaseResult& r) {
-    junit.cases.push_back(r.junit);
-    return r.failed ? 1 : 0;
-  };
-  int failed = 0, cases = 0;
-  // A scene is one case (VIRIM) or one per preset; the count is known only once
-  // loaded, so the bar counts scenes.
-  Progress progress("regress", scenes.size());
+  std::vector<RegressCase> cases;
   for (const fs::path& path : scenes) {
     const std::string name = path.stem().string();
-    // One volume load per scene, shared by its profiles.
     const ref::Scene base = ref::load_scene_file(path.string(), o.overrides);
-    const SceneVolume sv = load_scene_volume(base);
     if (base.algorithm == ref::Algorithm::Heidelberg) {
       // VIRIM's widths are its own profile ("virim"), not the ray caster's presets.
-      failed += record(run_case(o, base, sv, name, "virim", os));
-      ++cases;
-      progress.step();
+      cases.push_back({path, name, "virim", true});
       continue;
     }
-    for (const std::string& profile : o.profiles) {
-      std::vector<std::string> sets = o.overrides;
-      sets.push_back("precision.profile=" + profile);
-      const ref::Scene scene = ref::load_scene_file(path.string(), sets);
-      failed += record(run_case(o, scene, sv, name, profile, os));
-      ++cases;
-    }
-    progress.step();
+    for (const std::string& profile : o.profiles) cases.push_back({path, name, profile, false});
   }
-  os << cases - failed << " passed, " << failed << " failed\n";
+  return cases;
+}
+
+nlohmann::json junit_json(const JUnitCase& c) {
+  return {{"classname", c.classname}, {"name", c.name},       {"seconds", c.seconds},
+          {"outcome", static_cast<int>(c.outcome)},           {"type", c.type},
+          {"message", c.message},     {"details", c.details}};
+}
+
+JUnitCase junit_from_json(const nlohmann::json& j) {
+  JUnitCase c;
+  c.classname = j.at("classname").get<std::string>();
+  c.name = j.at("name").get<std::string>();
+  c.seconds = j.at("seconds").get<double>();
+  const int outcome = j.at("outcome").get<int>();
+  if (outcome < 0 || outcome > 2) throw std::out_of_range("outcome " + std::to_string(outcome));
+  c.outcome = static_cast<JUnitCase::Outcome>(outcome);
+  c.type = j.at("type").get<std::string>();
+  c.message = j.at("message").get<std::string>();
+  c.details = j.at("details").get<std::string>();
+  return c;
+}
+
+// The end of a run, local or merged: the summary line and the JUnit file.
+int finish_regress(const RegressOptions& o, const JUnitSuite& junit, std::ostream& os) {
+  const int failed = junit.failures();
+  os << static_cast<int>(junit.cases.size()) - failed << " passed, " << failed << " failed\n";
   if (!o.junit_path.empty()) write_junit_file(o.junit_path, junit);
   return failed;
+}
+
+}  // namespace
+
+int run_regress(const RegressOptions& o, std::ostream& os) {
+  if (o.shard_count < 1 || o.shard_index < 0 || o.shard_index >= o.shard_count)
+    throw Error("regress --shard " + std::to_string(o.shard_index) + "/" +
+                std::to_string(o.shard_count) + ": give i/n with 0 <= i < n");
+  const std::vector<RegressCase> cases = list_cases(o);
+  if (!o.junit_path.empty()) make_parent_dir(o.junit_path);  // before the work, not after
+  if (!o.results_path.empty()) make_parent_dir(o.results_path);
+  JUnitSuite junit{"voxcast regress", {}};
+  nlohmann::json results = nlohmann::json::array();
+  // The bar counts this run's cases; a scene's volume is loaded once, for its first case.
+  std::size_t mine = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    mine += static_cast<int>(i % static_cast<std::size_t>(o.shard_count)) == o.shard_index;
+  Progress progress("regress", mine);
+  std::optional<SceneVolume> sv;
+  fs::path loaded;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    if (static_cast<int>(i % static_cast<std::size_t>(o.shard_count)) != o.shard_index) continue;
+    const RegressCase& c = cases[i];
+    std::vector<std::string> sets = o.overrides;
+    if (!c.virim) sets.push_back("precision.profile=" + c.profile);
+    const ref::Scene scene = ref::load_scene_file(c.scene.string(), sets);
+    if (!sv || loaded != c.scene) {
+      sv.reset();
+      sv.emplace(load_scene_volume(scene));
+      loaded = c.scene;
+    }
+    std::ostringstream line;
+    const CaseResult r = run_case(o, scene, *sv, c.name, c.profile, line);
+    os << line.str();
+    junit.cases.push_back(r.junit);
+    results.push_back({{"index", i}, {"line", line.str()}, {"junit", junit_json(r.junit)}});
+    progress.step();
+  }
+  if (!o.results_path.empty())
+    write_file_atomically(o.results_path,
+                          nlohmann::json{{"kind", "voxcast regress shard"},
+                                         {"cases", cases.size()},
+                                         {"shard", std::to_string(o.shard_index) + "/" +
+                                                       std::to_string(o.shard_count)},
+                                         {"results", results}}
+                                  .dump(2) +
+                              "\n");
+  return finish_regress(o, junit, os);
+}
+
+int run_regress_merge(const std::vector<std::string>& files, const RegressOptions& o,
+                      std::ostream& os) {
+  if (files.empty()) throw Error("regress --merge: give the shards' results files");
+  std::map<std::size_t, std::pair<std::string, JUnitCase>> by_index;
+  std::optional<std::size_t> total;
+  for (const std::string& f : files) {
+    std::ifstream in(f);
+    if (!in) throw Error("regress --merge: " + f + ": cannot be read (did its shard finish?)");
+    try {
+      const nlohmann::json j = nlohmann::json::parse(in);
+      if (j.value("kind", "") != "voxcast regress shard")
+        throw Error("regress --merge: " + f + ": not the results of a regress shard");
+      const std::size_t n = j.at("cases").get<std::size_t>();
+      if (total && *total != n)
+        throw Error("regress --merge: " + f + " has " + std::to_string(n) + " cases, the other shards " +
+                    std::to_string(*total) + ": results of different runs");
+      total = n;
+      for (const nlohmann::json& r : j.at("results")) {
+        const std::size_t i = r.at("index").get<std::size_t>();
+        if (i >= n) throw Error("regress --merge: " + f + ": case " + std::to_string(i) + " of " + std::to_string(n));
+        if (!by_index.emplace(i, std::make_pair(r.at("line").get<std::string>(),
+                                                junit_from_json(r.at("junit")))).second)
+          throw Error("regress --merge: case " + std::to_string(i) + " is in two shards (" + f + ")");
+      }
+    } catch (const nlohmann::json::exception& e) {
+      throw Error("regress --merge: " + f + ": not the results of a regress shard (" + e.what() + ")");
+    } catch (const std::out_of_range& e) {
+      throw Error("regress --merge: " + f + ": not the results of a regress shard (" + e.what() + ")");
+    }
+  }
+  if (by_index.size() != *total) {
+    std::size_t missing = 0;
+    while (by_index.count(missing)) ++missing;
+    throw Error("regress --merge: " + std::to_string(*total - by_index.size()) + " of " +
+                std::to_string(*total) + " cases have no result (the first: case " +
+                std::to_string(missing) + "): give every shard's results");
+  }
+  if (!o.junit_path.empty()) make_parent_dir(o.junit_path);
+  JUnitSuite junit{"voxcast regress", {}};
+  for (const auto& [i, r] : by_index) {
+    os << r.first;
+    junit.cases.push_back(r.second);
+  }
+  return finish_regress(o, junit, os);
 }
 
 }  // namespace voxcast::cosim

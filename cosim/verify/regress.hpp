@@ -21,6 +21,11 @@ struct RegressOptions {
   bool bless = false;
   std::vector<std::string> overrides;    // --set, applied to every scene
   std::string junit_path = {};           // --junit: the cases as JUnit XML (empty: none)
+  // --shard i/n: only the cases whose index in the scene x preset list is
+  // i modulo n (a cluster's array task; cosim/cluster/cluster_runs.hpp).
+  int shard_index = 0;
+  int shard_count = 1;
+  std::string results_path = {};         // --results: this run's cases as JSON, for --merge
 };
 
 // FNV-1a (64 bit) over the image's size, bit depth and pixels.
@@ -39,5 +44,12 @@ AccuracyFloor accuracy_floor(const std::string& profile);
 // classname "regress.SCENE", name PROFILE, a failure naming the first pixel
 // where hls and bit-true differ, or the changed or missing golden.
 int run_regress(const RegressOptions& options, std::ostream& os);
+
+// --merge: the results files of the shards (--results) joined: every case's
+// line in the local run's order, the summary and options.junit_path; returns
+// the number of failed cases, as run_regress. Results of different runs, a
+// case in two files or a case in none are errors naming the file or the case.
+int run_regress_merge(const std::vector<std::string>& results_files, const RegressOptions& options,
+                      std::ostream& os);
 
 }  // namespace voxcast::cosim
