@@ -58,7 +58,7 @@ ClusterPlan sweep_cluster_plan(const SweepCommandLine& cmd, const SlurmOptions& 
   for (const std::string& v : cmd.vary) common.insert(common.end(), {"--vary", v});
   for (const std::string& s : cmd.sets) common.insert(common.end(), {"--set", s});
   common.insert(common.end(), {"--truth-oversampling", number_text(cmd.truth_oversampling),
-                               "--part", cmd.part});
+                               "--part", cmd.part, "--jobs", std::to_string(cmd.jobs)});
   const std::string truth_dir = (fs::path(p.dir) / "truth").string();
   p.truth_command = common;
   p.truth_command.insert(p.truth_command.end(),

@@ -38,6 +38,7 @@ struct SweepCommandLine {
   std::vector<std::string> vary, sets;
   double truth_oversampling = 16.0;
   std::string part;
+  int jobs = 1;  // --jobs: points at once within a job
   bool plots = true, html = false;
   std::string out;
 };

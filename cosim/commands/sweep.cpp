@@ -80,7 +80,7 @@ Subcommand add_sweep(CLI::App& voxcast) {
               (void)sweep::make_plan(a->scene, a->sets, a->vary, a->truth);
               cluster::run_on_slurm(
                   cluster::sweep_cluster_plan({a->scene, a->vary, a->sets, a->truth.oversampling,
-                                               a->part, !a->no_plots, a->options.html,
+                                               a->part, a->options.jobs, !a->no_plots, a->options.html,
                                                a->options.out_dir},
                                               a->slurm),
                   a->slurm, std::cout);
