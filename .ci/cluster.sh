@@ -143,8 +143,10 @@ echo "--- sweep --slurm 4, held; shard 2 cancelled before it starts; released"
 "$VOXCAST" sweep "${ARGS[@]}" --out "$ROOT/run" --slurm 4 --slurm-opt "--hold" | tee "$ROOT/submit.txt"
 source "$ROOT/run/slurm/jobs.env"
 scancel "${shards}_2"
+t0=$(date +%s.%N)
 scontrol release "$truth" "$shards" "$merge"
 wait_for "$ROOT/run" 9
+t1=$(date +%s.%N)
 grep -qE '^  shard 2 +FAILED +Slurm job [0-9]+_2: gone from its array before it ran' "$ROOT/status.txt" ||
   fail "sweep-status does not name shard 2 as cancelled"
 grep -qE '^  merge +FAILED +Slurm job [0-9]+: CANCELLED' "$ROOT/status.txt" ||
@@ -167,6 +169,20 @@ grep -q '1 rendered, 0 already in the cache' "$ROOT/run/slurm/logs/truth.log" ||
 if grep -h '^points' "$ROOT"/run/slurm/logs/shard-*.log | grep -qv '(0 truth images rendered'; then
   fail "a shard rendered a truth"
 fi
+
+# The time model of docs/cluster.md against this run: the jobs' own times
+# (from their summaries) and the wall time from release to the last job.
+truth_s=$(sed -nE 's/^truths .* in ([0-9.]+) s .*/\1/p' "$ROOT/run/slurm/logs/truth.log" | head -n 1)
+shard_s=$(sed -nE 's/^points .* in ([0-9.]+) s .*/\1/p' "$ROOT"/run/slurm/logs/shard-[013].log | tr '\n' ' ')
+echo "cluster: time model: truth ${truth_s} s; shards 0, 1, 3: ${shard_s}s; released to settled $(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }') s on $(nproc) CPUs"
+
+echo "--- an option sbatch refuses: one line naming the command and sbatch's words"
+rc=0
+"$VOXCAST" sweep "${ARGS[@]}" --out "$ROOT/refused" --slurm 2 --slurm-opt "--partition=nowhere" \
+  >"$ROOT/refused.txt" 2>&1 || rc=$?
+cat "$ROOT/refused.txt"
+[ "$rc" -eq 1 ] && grep -q "submission failed .*sbatch: error: .*[Pp]artition" "$ROOT/refused.txt" ||
+  fail "a partition sbatch refuses was not one line with its message and exit status 1"
 
 echo "--- regress --slurm 3 against a local regress"
 RARGS=(--scenes "$(dirname "$SCENE")/../tests/regress" --golden "$ROOT/no-goldens"
