@@ -30,8 +30,9 @@
 // speed, docs/performance.md "Speed of the hls engine"); without it -O2 leaves
 // most of them as calls, whose fixed-point arguments then pass through memory.
 // Only where VOXCAST_HLS_HOST_FAST is defined: the engines' own instantiations
-// (cosim/engines/hls_engine.cpp, rtl_model/engine.cpp; CMake sets it on those
-// files for the default fixed-point class). Everywhere else (the dialect and
+// (cosim/engines/hls_engine.cpp, rtl_model/engine.cpp), where CMake sets it
+// on those files in the builds made for speed: the default fixed-point class,
+// optimized, no sanitizer (hls/CMakeLists.txt). Everywhere else (the dialect and
 // C-simulation checks, the vendors' headers, the unit tests) the forced
 // inlining only costs compile time: it made the Xilinx ap_fixed build 10x
 // slower (docs/extremes.md, "CI steps"). Nothing under __SYNTHESIS__: there
