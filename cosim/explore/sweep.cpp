@@ -443,31 +443,17 @@ const std::vector<Front>& pareto_fronts() {
 
 namespace {
 
-// --truth-only: each point's truth into the cache, in parallel over --jobs;
-// points whose widths cannot hold the scene need none (their rows say
-// "infeasible" without one).
-SweepSummary render_truths(const Plan& plan, const SweepOptions& o,
-                           const std::vector<std::size_t>& points, const std::string& cache_dir) {
-  const auto t0 = StopwatchClock::now();
-  Caches caches{{}, TruthCache(cache_dir)};
-  const int threads = std::max(1, ref::worker_count(0) / o.jobs);
-  std::vector<std::exception_ptr> failures(points.size());
-  Progress progress("truth", points.size(), o.progress);
+// Runs work(t) for t in [0, count) on `jobs` threads (this one included),
+// each item once, stepping the progress line after each; then rethrows the
+// first item's exception in item order, if any failed.
+template <class Work>
+void run_on_jobs(std::size_t count, int jobs, Progress& progress, Work&& work) {
+  std::vector<std::exception_ptr> failures(count);
   std::atomic<std::size_t> next{0};
   const auto worker = [&] {
-    for (std::size_t t = next.fetch_add(1); t < points.size(); t = next.fetch_add(1)) {
-      ref::Scene scene = plan.scene(points[t]);
-      scene.render.threads = threads;
+    for (std::size_t t = next.fetch_add(1); t < count; t = next.fetch_add(1)) {
       try {
-        const std::shared_ptr<const SceneVolume> sv =
-            caches.volumes.get(volume_key(scene), [&] { return load_scene_volume(scene); });
-        bool feasible = true;
-        try {
-          check_fixed_point(scene, *sv, false);
-        } catch (const Error&) {
-          feasible = false;
-        }
-        if (feasible) caches.truths.get(scene, *sv, plan.truth);
+        work(t);
       } catch (...) {
         failures[t] = std::current_exception();
       }
@@ -476,12 +462,35 @@ SweepSummary render_truths(const Plan& plan, const SweepOptions& o,
   };
   {
     std::vector<std::jthread> pool;
-    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(points.size())); ++j)
-      pool.emplace_back(worker);
+    for (int j = 1; j < std::min<int>(jobs, static_cast<int>(count)); ++j) pool.emplace_back(worker);
     worker();
   }
   for (const std::exception_ptr& f : failures)
     if (f) std::rethrow_exception(f);
+}
+
+// --truth-only: each point's truth into the cache, in parallel over --jobs;
+// points whose widths cannot hold the scene need none (their rows say
+// "infeasible" without one).
+SweepSummary render_truths(const Plan& plan, const SweepOptions& o,
+                           const std::vector<std::size_t>& points, const std::string& cache_dir) {
+  const auto t0 = StopwatchClock::now();
+  Caches caches{{}, TruthCache(cache_dir)};
+  const int threads = std::max(1, ref::worker_count(0) / o.jobs);
+  Progress progress("truth", points.size(), o.progress);
+  run_on_jobs(points.size(), o.jobs, progress, [&](std::size_t t) {
+    ref::Scene scene = plan.scene(points[t]);
+    scene.render.threads = threads;
+    const std::shared_ptr<const SceneVolume> sv =
+        caches.volumes.get(volume_key(scene), [&] { return load_scene_volume(scene); });
+    bool feasible = true;
+    try {
+      check_fixed_point(scene, *sv, false);
+    } catch (const Error&) {
+      feasible = false;
+    }
+    if (feasible) caches.truths.get(scene, *sv, plan.truth);
+  });
   SweepSummary s;
   s.truth_only = true;
   s.points_total = plan.size();
@@ -543,7 +552,6 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
     }
   }
   Caches caches{{}, TruthCache(cache_dir, !o.truth_from_cache)};
-  std::vector<std::exception_ptr> failures(mine.size());
   const int threads = std::max(1, ref::worker_count(0) / o.jobs);
   // Journal writes take this lock; a stop takes it for good before it counts,
   // so the count it prints is exactly the entries on disk.
@@ -555,29 +563,13 @@ SweepSummary run_sweep(const Plan& plan, const SweepOptions& o) {
            journal.string() + "; the same command with --resume goes on";
   });
   Progress progress("sweep", todo.size(), o.progress);
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&] {
-    for (std::size_t t = next.fetch_add(1); t < todo.size(); t = next.fetch_add(1)) {
-      const std::size_t k = todo[t];
-      try {
-        outcomes[k] = run_point(plan, mine[k], threads, caches);
-        const std::lock_guard lock(journal_mutex);
-        journal_point(journal, table, outcomes[k]);
-        ++kept;
-      } catch (...) {
-        failures[k] = std::current_exception();
-      }
-      progress.step();
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(todo.size())); ++j)
-      pool.emplace_back(worker);
-    worker();
-  }
-  for (const std::exception_ptr& f : failures)
-    if (f) std::rethrow_exception(f);
+  run_on_jobs(todo.size(), o.jobs, progress, [&](std::size_t t) {
+    const std::size_t k = todo[t];
+    outcomes[k] = run_point(plan, mine[k], threads, caches);
+    const std::lock_guard lock(journal_mutex);
+    journal_point(journal, table, outcomes[k]);
+    ++kept;
+  });
 
   for (PointOutcome& p : outcomes) table.rows.push_back(p.row);
   mark_fronts(table, o.shard.count == 1);
