@@ -93,6 +93,7 @@ ClusterPlan regress_cluster_plan(const RegressOptions& r, const std::string& out
   std::vector<std::string> common = {exe,      "regress", "--scenes", absolute(r.scenes_dir),
                                      "--golden", absolute(r.golden_dir), "--profiles",
                                      joined(r.profiles)};
+  for (const std::string& s : r.only_scenes) common.insert(common.end(), {"--scene", s});
   for (const std::string& s : r.overrides) common.insert(common.end(), {"--set", s});
   p.shard_command = common;
   p.shard_command.insert(

@@ -27,6 +27,8 @@ Subcommand add_regress(CLI::App& voxcast) {
   cmd->add_option("--scenes", opt.scenes_dir, "Folder of scenes")->capture_default_str();
   cmd->add_option("--golden", opt.golden_dir, "Folder of golden files")->capture_default_str();
   cmd->add_option("--profiles", opt.profiles, "Presets to run")->delimiter(',');
+  cmd->add_option("--scene", opt.only_scenes,
+                  "Only this scene of --scenes (its file name without .toml; repeatable)");
   cmd->add_flag("--bless", opt.bless,
                 "Measure accuracy against the float reference and (re)write the golden files "
                 "of the cases that meet their floor");

@@ -227,6 +227,18 @@ std::vector<RegressCase> list_cases(const RegressOptions& o) {
     if (e.path().extension() == ".toml") scenes.push_back(e.path());
   std::sort(scenes.begin(), scenes.end());
   if (scenes.empty()) throw Error(o.scenes_dir + ": no *.toml scenes");
+  if (!o.only_scenes.empty()) {
+    std::string known;
+    for (const fs::path& p : scenes) known += (known.empty() ? "" : ", ") + p.stem().string();
+    for (const std::string& name : o.only_scenes)
+      if (std::none_of(scenes.begin(), scenes.end(),
+                       [&](const fs::path& p) { return p.stem() == name; }))
+        throw Error("regress --scene " + name + ": no such scene in " + o.scenes_dir + " (" + known + ")");
+    std::erase_if(scenes, [&](const fs::path& p) {
+      return std::find(o.only_scenes.begin(), o.only_scenes.end(), p.stem().string()) ==
+             o.only_scenes.end();
+    });
+  }
   std::vector<RegressCase> cases;
   for (const fs::path& path : scenes) {
     const std::string name = path.stem().string();

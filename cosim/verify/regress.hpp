@@ -26,6 +26,7 @@ struct RegressOptions {
   int shard_index = 0;
   int shard_count = 1;
   std::string results_path = {};         // --results: this run's cases as JSON, for --merge
+  std::vector<std::string> only_scenes = {};  // --scene: these scenes (file stems) only; empty: all
 };
 
 // FNV-1a (64 bit) over the image's size, bit depth and pixels.

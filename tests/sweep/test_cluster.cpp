@@ -134,72 +134,70 @@ TEST(ClusterScripts, AShardWithoutItsTruthFailsInsteadOfRenderingIt) {
   fs::remove_all(dir);
 }
 
-// The whole run as the cluster would make it: truth, 4 shards, merge.
-class ClusterRun : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    whole_ = temp_dir("whole");
-    const Command w = voxcast::test::run_voxcast(sweep_args(whole_));
-    ASSERT_EQ(w.status, 0) << w.output;
-    dir_ = temp_dir("run");
-    const Command d = voxcast::test::run_voxcast(sweep_args(dir_) + " --slurm 4 --dry-run");
-    ASSERT_EQ(d.status, 0) << d.output;
-    ASSERT_EQ(run_script(dir_, "truth").status, 0) << read_all(dir_ / "slurm/logs/truth.log");
-    for (int k = 0; k < 4; ++k)
-      ASSERT_EQ(run_script(dir_, "shards", k).status, 0)
-          << read_all(dir_ / "slurm/logs" / ("shard-" + std::to_string(k) + ".log"));
-    ASSERT_EQ(run_script(dir_, "merge").status, 0) << read_all(dir_ / "slurm/logs/merge.log");
+// The whole run as the cluster would make it: truth, 4 shards, merge; then a
+// failed shard found and resumed. One test, not several: ctest runs each test
+// in a process of its own, and the run is the cost.
+TEST(ClusterRun, ScriptsRunAsSlurmWouldRunThemAndResumeAFailedShard) {
+  const fs::path whole = temp_dir("whole"), dir = temp_dir("run");
+  const Command w = voxcast::test::run_voxcast(sweep_args(whole));
+  ASSERT_EQ(w.status, 0) << w.output;
+  const Command d = voxcast::test::run_voxcast(sweep_args(dir) + " --slurm 4 --dry-run");
+  ASSERT_EQ(d.status, 0) << d.output;
+  ASSERT_EQ(run_script(dir, "truth").status, 0) << read_all(dir / "slurm/logs/truth.log");
+  for (int k = 0; k < 4; ++k)
+    ASSERT_EQ(run_script(dir, "shards", k).status, 0)
+        << read_all(dir / "slurm/logs" / ("shard-" + std::to_string(k) + ".log"));
+  ASSERT_EQ(run_script(dir, "merge").status, 0) << read_all(dir / "slurm/logs/merge.log");
+
+  {
+    SCOPED_TRACE("the merged results are byte-identical to one machine's");
+    for (const char* f : {"results.csv", "results.json"})
+      EXPECT_EQ(read_all(dir / f), read_all(whole / f)) << f;
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(whole_);
-    fs::remove_all(dir_);
+  {
+    SCOPED_TRACE("the truth is rendered once, by the truth job only");
+    EXPECT_NE(read_all(dir / "slurm/logs/truth.log").find("1 rendered, 0 already in the cache"),
+              std::string::npos) << read_all(dir / "slurm/logs/truth.log");
+    for (int k = 0; k < 4; ++k) {
+      const std::string log = read_all(dir / "slurm/logs" / ("shard-" + std::to_string(k) + ".log"));
+      EXPECT_NE(log.find("(0 truth images rendered)"), std::string::npos) << log;
+    }
   }
-  static fs::path whole_, dir_;
-};
-fs::path ClusterRun::whole_, ClusterRun::dir_;
-
-TEST_F(ClusterRun, MergedResultsAreByteIdenticalToOneMachine) {
-  for (const char* f : {"results.csv", "results.json"})
-    EXPECT_EQ(read_all(dir_ / f), read_all(whole_ / f)) << f;
-}
-
-TEST_F(ClusterRun, TheTruthIsRenderedOnceByTheTruthJobOnly) {
-  EXPECT_NE(read_all(dir_ / "slurm/logs/truth.log").find("1 rendered, 0 already in the cache"),
-            std::string::npos) << read_all(dir_ / "slurm/logs/truth.log");
-  for (int k = 0; k < 4; ++k) {
-    const std::string log = read_all(dir_ / "slurm/logs" / ("shard-" + std::to_string(k) + ".log"));
-    EXPECT_NE(log.find("(0 truth images rendered)"), std::string::npos) << log;
+  {
+    SCOPED_TRACE("sweep-status from the files alone");
+    const Command s = voxcast::test::run_voxcast("sweep-status " + dir.string());
+    EXPECT_EQ(s.status, 0) << s.output;
+    EXPECT_NE(s.output.find("finished"), std::string::npos) << s.output;
   }
-}
-
-TEST_F(ClusterRun, StatusFromTheFilesAndResumeOfAFailedShard) {
-  Command s = voxcast::test::run_voxcast("sweep-status " + dir_.string());
-  EXPECT_EQ(s.status, 0) << s.output;
-  EXPECT_NE(s.output.find("finished"), std::string::npos) << s.output;
-
-  // Shard 2 failed: its exit file says so, its results go.
-  const fs::path exit2 = dir_ / "slurm/status/shard-2.exit";
-  { std::ofstream(exit2) << "1\n"; }
-  fs::remove_all(dir_ / "shards/2");
-  s = voxcast::test::run_voxcast("sweep-status " + dir_.string());
-  EXPECT_EQ(s.status, 9) << s.output;
-  EXPECT_NE(s.output.find("shard 2   FAILED  exit status 1  log "), std::string::npos) << s.output;
-
-  // --resume sends shard 2 and the merge only: the truth job succeeded.
-  const Command r = voxcast::test::run_voxcast(sweep_args(dir_) + " --slurm 4 --resume --dry-run");
-  ASSERT_EQ(r.status, 0) << r.output;
-  const std::string submit = read_all(dir_ / "slurm/submit.sh");
-  EXPECT_EQ(submit.find("truth.sbatch"), std::string::npos) << submit;
-  EXPECT_NE(submit.find("--array=2 shards.sbatch"), std::string::npos) << submit;
-  EXPECT_FALSE(fs::exists(exit2));
-  ASSERT_EQ(run_script(dir_, "shards", 2).status, 0);
-  ASSERT_EQ(run_script(dir_, "merge").status, 0);
-  EXPECT_EQ(read_all(dir_ / "results.csv"), read_all(whole_ / "results.csv"));
-
-  // Another sweep in the same folder is refused, naming what differs.
-  const Command other = voxcast::test::run_voxcast(sweep_args(dir_) + " --slurm 3 --resume --dry-run");
-  EXPECT_EQ(other.status, 1) << other.output;
-  EXPECT_NE(other.output.find("holds another run: its shards was 4"), std::string::npos) << other.output;
+  {
+    SCOPED_TRACE("a failed shard: named by sweep-status, resubmitted alone by --resume");
+    const fs::path exit2 = dir / "slurm/status/shard-2.exit";
+    { std::ofstream(exit2) << "1\n"; }
+    fs::remove_all(dir / "shards/2");
+    const Command s = voxcast::test::run_voxcast("sweep-status " + dir.string());
+    EXPECT_EQ(s.status, 9) << s.output;
+    EXPECT_NE(s.output.find("shard 2   FAILED  exit status 1  log "), std::string::npos) << s.output;
+    // --resume sends shard 2 and the merge only: the truth job succeeded.
+    const Command r = voxcast::test::run_voxcast(sweep_args(dir) + " --slurm 4 --resume --dry-run");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::string submit = read_all(dir / "slurm/submit.sh");
+    EXPECT_EQ(submit.find("truth.sbatch"), std::string::npos) << submit;
+    EXPECT_NE(submit.find("--array=2 shards.sbatch"), std::string::npos) << submit;
+    EXPECT_FALSE(fs::exists(exit2));
+    ASSERT_EQ(run_script(dir, "shards", 2).status, 0);
+    ASSERT_EQ(run_script(dir, "merge").status, 0);
+    EXPECT_EQ(read_all(dir / "results.csv"), read_all(whole / "results.csv"));
+  }
+  {
+    SCOPED_TRACE("another sweep in the same folder is refused, naming what differs");
+    const Command other =
+        voxcast::test::run_voxcast(sweep_args(dir) + " --slurm 3 --resume --dry-run");
+    EXPECT_EQ(other.status, 1) << other.output;
+    EXPECT_NE(other.output.find("holds another run: its shards was 4"), std::string::npos)
+        << other.output;
+  }
+  fs::remove_all(whole);
+  fs::remove_all(dir);
 }
 
 // A regression spread over shards fails exactly as the local run: same lines,
