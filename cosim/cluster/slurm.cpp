@@ -162,7 +162,8 @@ const JobRecord* task_record(const std::vector<JobRecord>& records, int k) {
   return nullptr;
 }
 
-std::string value_of(const JobRecord& r, const std::string& key) {
+// A key's value in an scontrol record or in jobs.env; empty when absent.
+std::string value_of(const std::map<std::string, std::string>& r, const std::string& key) {
   const auto it = r.find(key);
   return it == r.end() ? std::string() : it->second;
 }
@@ -296,11 +297,7 @@ Submission submit(const ClusterPlan& plan) {
                 (slurm_dir(plan.dir) / "submit.sh").string() + ", exit status " +
                 std::to_string(c.status) + "): " + c.first_line());
   const std::map<std::string, std::string> env = read_env(slurm_dir(plan.dir) / "jobs.env");
-  const auto get = [&](const char* k) {
-    const auto it = env.find(k);
-    return it == env.end() ? std::string() : it->second;
-  };
-  return {get("truth"), get("shards"), get("merge")};
+  return {value_of(env, "truth"), value_of(env, "shards"), value_of(env, "merge")};
 }
 
 std::vector<int> parse_array_indices(const std::string& spec) {
@@ -369,10 +366,7 @@ ClusterStatus read_status(const std::string& dir) {
   st.shards = plan->value("shards", 0);
   if (st.shards < 1) throw Error((slurm_dir(dir) / "plan.json").string() + ": no shard count");
   const std::map<std::string, std::string> env = read_env(slurm_dir(dir) / "jobs.env");
-  const auto id = [&](const char* k) {
-    const auto it = env.find(k);
-    return it == env.end() ? std::string() : it->second;
-  };
+  const auto id = [&](const char* k) { return value_of(env, k); };
   const auto single = [&](const std::string& name, const std::string& job_id) {
     const std::optional<std::vector<JobRecord>> r = ask_scontrol(job_id);
     st.scheduler_asked = st.scheduler_asked || r.has_value();

@@ -293,14 +293,16 @@ int run_regress(const RegressOptions& o, std::ostream& os) {
   JUnitSuite junit{"voxcast regress", {}};
   nlohmann::json results = nlohmann::json::array();
   // The bar counts this run's cases; a scene's volume is loaded once, for its first case.
-  std::size_t mine = 0;
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    mine += static_cast<int>(i % static_cast<std::size_t>(o.shard_count)) == o.shard_index;
-  Progress progress("regress", mine);
+  const auto mine = [&](std::size_t i) {
+    return static_cast<int>(i % static_cast<std::size_t>(o.shard_count)) == o.shard_index;
+  };
+  std::size_t my_cases = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) my_cases += mine(i) ? 1 : 0;
+  Progress progress("regress", my_cases);
   std::optional<SceneVolume> sv;
   fs::path loaded;
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    if (static_cast<int>(i % static_cast<std::size_t>(o.shard_count)) != o.shard_index) continue;
+    if (!mine(i)) continue;
     const RegressCase& c = cases[i];
     std::vector<std::string> sets = o.overrides;
     if (!c.virim) sets.push_back("precision.profile=" + c.profile);
