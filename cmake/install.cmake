@@ -29,6 +29,9 @@ install(TARGETS voxcast_refmodel voxcast_hls voxcast_rtl voxcast_cosim voxcast_f
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The image module voxcast loads on its first image (cosim/reports/image_io_module.hpp):
+# found from the installed command as bin/../LIBDIR/voxcast.
+install(TARGETS voxcast_image_io LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/voxcast)
 
 # Headers keep their paths below include/voxcast, so `#include "hls/..."`
 # reads the same in the tree and in a consumer.

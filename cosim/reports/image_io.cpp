@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
+#include "cosim/reports/image_io_module.hpp"
 #include "refmodel/error.hpp"
 
 namespace voxcast::cosim {
@@ -20,17 +23,74 @@ std::string extension_of(const std::string& path) {
   return ext;
 }
 
-void write_pixels(const std::string& path, const OIIO::ImageSpec& spec, const void* data) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw Error(path + ": cannot write images of this type (" + OIIO::geterror() + ")");
-  if (!out->open(path, spec) || !out->write_image(spec.format, data) || !out->close())
-    throw Error(path + ": " + out->geterror());
+namespace im = image_module;
+
+// --- The module (image_io_module.hpp) ----------------------------------------
+// Where libvoxcast_image_io.so is looked for, in order: VOXCAST_IMAGE_IO_MODULE
+// alone when it is set; beside the running program, as installed
+// (VOXCAST_IMAGE_IO_FROM_BINDIR: bin/../lib/voxcast) and as built (every
+// program of the build tree sits one folder below its top, the module in
+// lib/voxcast of it); the build tree's own path.
+std::vector<std::string> module_candidates() {
+  if (const char* env = std::getenv("VOXCAST_IMAGE_IO_MODULE"); env && *env) return {env};
+  std::vector<std::string> paths;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) paths.push_back((exe.parent_path() / VOXCAST_IMAGE_IO_FROM_BINDIR).lexically_normal());
+  paths.push_back(VOXCAST_IMAGE_IO_BUILD_PATH);
+  return paths;
 }
 
-// Same inputs, same bytes: OpenImageIO stamps an EXR with the time of writing
-// (a DateTime attribute, OpenEXR's capDate) unless the spec names one; an
-// empty DateTime writes none.
-void unstamped(OIIO::ImageSpec& spec) { spec.attribute("DateTime", ""); }
+const im::Api& load_module() {
+  std::string tried;
+  for (const std::string& path : module_candidates()) {
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      tried += "\n  " + path + ": " + (why ? why : "cannot load");
+      continue;
+    }
+    using Entry = const im::Api* (*)();
+    const auto entry = reinterpret_cast<Entry>(dlsym(handle, "voxcast_image_io_api"));
+    const im::Api* api = entry ? entry() : nullptr;
+    if (api && api->abi_version == im::kAbiVersion) return *api;  // stays loaded
+    tried += "\n  " + path + ": " +
+             (api ? "a module of another voxcast build (interface " +
+                        std::to_string(api->abi_version) + ", this one reads " +
+                        std::to_string(im::kAbiVersion) + ")"
+                  : std::string("not voxcast's image module (no voxcast_image_io_api)"));
+    dlclose(handle);
+  }
+  throw Error("image files need voxcast's image module (libvoxcast_image_io.so, OpenImageIO); "
+              "none could be loaded:" + tried +
+              "\nInstall voxcast with `cmake --install`, or name the module's path in "
+              "VOXCAST_IMAGE_IO_MODULE.");
+}
+
+// Loaded once, on the first image, by whichever thread gets there first; a
+// failure is thrown to each caller again.
+const im::Api& image_api() {
+  static std::mutex m;
+  static const im::Api* api = nullptr;
+  const std::lock_guard<std::mutex> lock(m);
+  if (!api) api = &load_module();
+  return *api;
+}
+
+void check(const std::string& path, const std::string& error) {
+  if (!error.empty()) throw Error(path + ": " + error);
+}
+
+im::Raster raster(int width, int height, std::vector<std::string> channels, im::PixelType type,
+                  const void* data) {
+  im::Raster r;
+  r.width = width;
+  r.height = height;
+  r.channels = std::move(channels);
+  r.type = type;
+  r.data = data;
+  return r;
+}
 
 std::uint8_t to_8bit(double v) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
@@ -61,14 +121,12 @@ void write_image(const std::string& path, const ref::Image& image, const glm::dv
     std::vector<float> rgba(4 * n);
     for (std::size_t i = 0; i < n; ++i)
       for (int c = 0; c < 4; ++c) rgba[4 * i + c] = static_cast<float>(image.pixels[i][c]);
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
-    spec.attribute("compression", "zip");
-    unstamped(spec);
-    write_pixels(path, spec, rgba.data());
+    check(path, image_api().write(path, raster(image.width, image.height, {"R", "G", "B", "A"},
+                                                im::PixelType::Float, rgba.data())));
   } else if (ext == ".png") {
     const std::vector<std::uint8_t> rgb = to_rgb8(image, background);
-    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    write_pixels(path, spec, rgb.data());
+    check(path, image_api().write(path, raster(image.width, image.height, {"R", "G", "B"},
+                                                im::PixelType::UInt8, rgb.data())));
   } else {
     check_image_path(path);
   }
@@ -78,12 +136,9 @@ void write_exr_layers(const std::string& path, const std::vector<Layer>& layers)
   if (layers.empty()) throw Error(path + ": no layers to write");
   const int w = layers.front().image->width, h = layers.front().image->height;
   const int nch = 4 * static_cast<int>(layers.size());
-  OIIO::ImageSpec spec(w, h, nch, OIIO::TypeDesc::FLOAT);
-  spec.channelnames.clear();
+  std::vector<std::string> channels;
   for (const Layer& l : layers)
-    for (const char* c : {"R", "G", "B", "A"}) spec.channelnames.push_back(l.name + "." + c);
-  spec.attribute("compression", "zip");
-  unstamped(spec);
+    for (const char* c : {"R", "G", "B", "A"}) channels.push_back(l.name + "." + c);
   std::vector<float> data(static_cast<std::size_t>(w) * h * nch);
   for (std::size_t li = 0; li < layers.size(); ++li) {
     const ref::Image& img = *layers[li].image;
@@ -92,7 +147,8 @@ void write_exr_layers(const std::string& path, const std::vector<Layer>& layers)
       for (int c = 0; c < 4; ++c)
         data[i * nch + 4 * li + c] = static_cast<float>(img.pixels[i][c]);
   }
-  write_pixels(path, spec, data.data());
+  check(path, image_api().write(path, raster(w, h, std::move(channels), im::PixelType::Float,
+                                              data.data())));
 }
 
 void write_animation(const std::string& path, const std::vector<ref::Image>& frames,
@@ -103,42 +159,36 @@ void write_animation(const std::string& path, const std::vector<ref::Image>& fra
   if (frames_per_second < 1 || frames_per_second > 100)
     throw Error(path + ": animation rate " + std::to_string(frames_per_second) +
                 " frames/s is outside 1..100");
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out || !out->supports("multiimage"))
-    throw Error(path + ": this OpenImageIO cannot write animated GIF (" + OIIO::geterror() + ")");
-  std::vector<OIIO::ImageSpec> specs;
+  std::vector<std::vector<std::uint8_t>> rgb;
+  std::vector<im::Raster> rasters;
+  rgb.reserve(frames.size());
   for (const ref::Image& f : frames) {
     if (f.width != frames.front().width || f.height != frames.front().height)
       throw Error(path + ": animation frames differ in size");
-    OIIO::ImageSpec spec(f.width, f.height, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("FramesPerSecond", OIIO::TypeRational, std::array<int, 2>{frames_per_second, 1}.data());
-    spec.attribute("oiio:LoopCount", 0);  // loop forever
-    specs.push_back(spec);
+    rgb.push_back(to_rgb8(f, background));
+    rasters.push_back(
+        raster(f.width, f.height, {"R", "G", "B"}, im::PixelType::UInt8, rgb.back().data()));
   }
-  if (!out->open(path, static_cast<int>(specs.size()), specs.data()))
-    throw Error(path + ": " + out->geterror());
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    if (i > 0 && !out->open(path, specs[i], OIIO::ImageOutput::AppendSubimage))
-      throw Error(path + ": frame " + std::to_string(i) + ": " + out->geterror());
-    const std::vector<std::uint8_t> rgb = to_rgb8(frames[i], background);
-    if (!out->write_image(OIIO::TypeDesc::UINT8, rgb.data()))
-      throw Error(path + ": frame " + std::to_string(i) + ": " + out->geterror());
-  }
-  if (!out->close()) throw Error(path + ": " + out->geterror());
+  check(path, image_api().write_gif(path, rasters, frames_per_second));
 }
 
 ref::Image read_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path + ": cannot read image (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = in->spec();
-  std::vector<float> data(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-    throw Error(path + ": " + in->geterror());
-  ref::Image img(spec.width, spec.height);
+  int width = 0, height = 0, nch = 0;
+  std::vector<float> data;
+  check(path, image_api().read_float(path, &width, &height, &nch, &data));
+  ref::Image img(width, height);
   for (std::size_t i = 0; i < img.pixels.size(); ++i)
     for (int c = 0; c < 4; ++c)
-      img.pixels[i][c] = c < spec.nchannels ? data[i * spec.nchannels + c] : 1.0;
+      img.pixels[i][c] = c < nch ? data[i * static_cast<std::size_t>(nch) + static_cast<std::size_t>(c)] : 1.0;
   return img;
 }
+
+ImageFileInfo read_image_info(const std::string& path) {
+  im::FileInfo i;
+  check(path, image_api().info(path, &i));
+  return {i.width, i.height, i.channels, i.subimages, std::move(i.attributes)};
+}
+
+std::string image_library_version() { return image_api().library_version; }
 
 }  // namespace voxcast::cosim

@@ -1,7 +1,10 @@
 // Image output. `.exr`: 32-bit float RGBA, premultiplied, the volume alone (the
 // background is not composited, so the alpha channel stays meaningful for
 // analysis and compositing). `.png`: 8-bit RGB for people, composited over the
-// scene's background. Written through OpenImageIO.
+// scene's background. Written through OpenImageIO, which voxcast loads on the
+// first image it writes or reads (image_io_module.hpp: a program that writes
+// none starts without it); when it cannot be loaded, these throw
+// voxcast::Error naming the paths tried.
 #pragma once
 
 #include <string>
@@ -34,5 +37,19 @@ void write_animation(const std::string& path, const std::vector<ref::Image>& fra
 
 // Reads an image written by write_image (any format OpenImageIO reads) as RGBA.
 ref::Image read_image(const std::string& path);
+
+// What a file holds, without its pixels: size, channels, subimages (frames of
+// an animation) and the names of its metadata attributes.
+struct ImageFileInfo {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  int subimages = 0;
+  std::vector<std::string> attributes;
+};
+ImageFileInfo read_image_info(const std::string& path);
+
+// The OpenImageIO version of the loaded module (loading it if need be).
+std::string image_library_version();
 
 }  // namespace voxcast::cosim
