@@ -15,6 +15,17 @@
 //   bits. It counts as a sample (the frame's counts are the scene's: without
 //   space leaping every sample is interpolated).
 //
+//   Runs of such samples are passed over in one step, not one by one. Each
+//   empty block also holds its chessboard distance d (in blocks) to the
+//   nearest block that is not empty, so every block within d - 1 of it along
+//   each axis is empty too. A sample's cell is a monotone function of its
+//   position along each axis (clamp, floor, the last-cell rule of
+//   sample_cell), and positions are exact sums p0 + k·s (pos_t and step_t have
+//   the same fraction bits, the wrap-around adder of step_position), so the
+//   number of samples the ray takes before its cell leaves that cube is a
+//   division per axis (samples_inside), and the position after them is
+//   p + run·s, the same bits as run additions.
+//
 // A frame that asks for render.space_leaping leaps with the unit
 // (march_ray_leaping, on the same banks); a MIP frame takes every sample.
 #pragma once
@@ -35,12 +46,50 @@ namespace hls {
 namespace host {
 
 // Which blocks of bittrue::VoxelMemory::leap_blocks hold only transparent
-// samples for one frame's classification table (one byte per block, x fastest).
+// samples for one frame's classification table (one byte per block, x fastest):
+// 0 for a block that is not empty, else its chessboard distance in blocks to
+// the nearest one that is (at most kMaxEmptyDistance; blocks outside the grid
+// do not count: sample_cell clamps every position into it).
 struct EmptyBlocks {
+  static constexpr std::uint8_t kMaxEmptyDistance = 255;
   int lb = 0;                    // log2 of the block edge in cells
   std::int64_t bx = 0, bxy = 0;  // blocks along x, per z slice
-  std::vector<std::uint8_t> empty;
+  std::int64_t n[3] = {0, 0, 0};  // blocks per axis
+  std::vector<std::uint8_t> distance;
 };
+
+// The exact chessboard (L-infinity) distance transform of the empty map, in
+// place: the two raster passes of the 3x3x3 unit-weight chamfer mask
+// (Rosenfeld and Pfaltz's sequential algorithm in 3-D), each block taking the
+// minimum over the 13 neighbours already visited in its pass, plus one.
+inline void chessboard_distance(EmptyBlocks& eb) {
+  const std::int64_t nx = eb.n[0], ny = eb.n[1], nz = eb.n[2];
+  auto at = [&](std::int64_t x, std::int64_t y, std::int64_t z) -> std::uint8_t& {
+    return eb.distance[static_cast<std::size_t>(x + y * nx + z * nx * ny)];
+  };
+  auto pass = [&](int dir) {
+    for (std::int64_t zi = 0; zi < nz; ++zi)
+      for (std::int64_t yi = 0; yi < ny; ++yi)
+        for (std::int64_t xi = 0; xi < nx; ++xi) {
+          const std::int64_t x = dir > 0 ? xi : nx - 1 - xi, y = dir > 0 ? yi : ny - 1 - yi,
+                             z = dir > 0 ? zi : nz - 1 - zi;
+          std::uint8_t& d = at(x, y, z);
+          if (d == 0) continue;
+          // The neighbours before (x, y, z) in this pass's raster order.
+          for (int dz = -1; dz <= 0; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                if (dz == 0 && (dy > 0 || (dy == 0 && dx >= 0))) continue;
+                const std::int64_t qx = x + dir * dx, qy = y + dir * dy, qz = z + dir * dz;
+                if (qx < 0 || qy < 0 || qz < 0 || qx >= nx || qy >= ny || qz >= nz) continue;
+                const std::uint8_t q = at(qx, qy, qz);
+                if (q < d && q + 1 < d) d = static_cast<std::uint8_t>(q + 1);
+              }
+        }
+  };
+  pass(+1);
+  pass(-1);
+}
 
 // The frame's empty blocks, or null when the engine does not skip: a MIP
 // frame, a frame that leaps with the unit (render.space_leaping), or a memory
@@ -60,13 +109,15 @@ std::shared_ptr<const EmptyBlocks> empty_blocks(const bittrue::FrameSetup& fs,
   out->lb = b.block_log2;
   out->bx = b.blocks[0];
   out->bxy = std::int64_t{b.blocks[0]} * b.blocks[1];
-  out->empty.resize(b.count());
+  for (int a = 0; a < 3; ++a) out->n[a] = b.blocks[a];
+  out->distance.resize(b.count());
   for (std::size_t i = 0; i < b.count(); ++i) {
     MinMaxEntry<P> e;
     e.lo = std::uint32_t{b.vmin[i]} << memory.value_shift;
     e.hi = std::uint32_t{b.vmax[i]} << memory.value_shift;
-    out->empty[i] = block_empty<P>(*lr, e) ? 1 : 0;
+    out->distance[i] = block_empty<P>(*lr, e) ? EmptyBlocks::kMaxEmptyDistance : 0;
   }
+  chessboard_distance(*out);
   return out;
 }
 
@@ -81,6 +132,49 @@ struct EngineBanks : BitTrueBanks<P> {
   explicit EngineBanks(const bittrue::VoxelMemory& mem) : BitTrueBanks<P>(mem) {}
 };
 
+// The two's-complement value of a fixed-point number of at most 64 bits.
+template <class T>
+std::int64_t signed_raw(const T& x) {
+  static_assert(T::width <= 64, "signed_raw: more than 64 bits");
+  const std::uint64_t u = read_bits(x);
+  if (T::width == 64) return static_cast<std::int64_t>(u);
+  const std::uint64_t sign = std::uint64_t{1} << (T::width - 1);
+  return static_cast<std::int64_t>(u ^ sign) - static_cast<std::int64_t>(sign);
+}
+
+// How many samples from position p (raw, axis a) on keep the cell's block
+// along a within [lo_block, hi_block] when the ray steps by s (raw): at least
+// 1 (the sample at p is inside), or `unlimited` when the ray never leaves
+// along this axis. The block of a position is sample_cell's cell >> lb: the
+// position clamped into [LO, HI], floored, and the last cell folded onto the
+// one before; all monotone, so the samples inside are a run from p on.
+template <class P>
+std::uint64_t samples_inside(const GeometryRegisters<P>& r, int a, std::int64_t p, std::int64_t s,
+                             std::int64_t lo_block, std::int64_t hi_block, unsigned lb,
+                             std::uint64_t unlimited) {
+  using G = GeometryParams<P>;
+  constexpr int F = G::pos_t::width - fixed_iwidth<typename G::pos_t>::value;
+  if (s == 0) return unlimited;
+  const std::int64_t last = static_cast<std::int64_t>(r.LAST[a].to_uint64());
+  // The crop box is in whole voxels (box_t, an integer); positions in pos_t.
+  const std::int64_t lo_raw = signed_raw(r.LO[a]) * (std::int64_t{1} << F);
+  if (s > 0) {
+    // The highest cell a position can reach, and the first cell past the range.
+    std::int64_t max_cell = signed_raw(r.HI[a]);
+    if (max_cell == last && last != 0) max_cell = last - 1;
+    const std::int64_t t = (hi_block + 1) << lb;
+    if (t > max_cell) return unlimited;
+    const std::int64_t t_raw = t << F;  // <= HI: a position reaches cell t from here on
+    return static_cast<std::uint64_t>((t_raw - p + s - 1) / s);
+  }
+  // Below the range: cells below lo_block << lb, reached only above LO.
+  if (lo_block <= 0) return unlimited;
+  const std::int64_t x = lo_block << lb;
+  const std::int64_t x_raw = x << F;
+  if (x_raw <= lo_raw) return unlimited;
+  return static_cast<std::uint64_t>((p - x_raw) / -s + 1);
+}
+
 // march_ray (interpolation_processor.hpp) on the engine's banks, found by
 // argument-dependent lookup from cast_ray: the same samples in the same order,
 // each either interpolated and given to the sink or, in an empty block,
@@ -93,24 +187,57 @@ void march_ray(const GeometryRegisters<P>& r, const EngineBanks<P>& banks, const
     return;
   }
   using G = GeometryParams<P>;
+  using pos_t = typename G::pos_t;
+  using step_t = typename G::step_t;
+  static_assert(pos_t::width - fixed_iwidth<pos_t>::value ==
+                    step_t::width - fixed_iwidth<step_t>::value,
+                "a run of samples is p + run·s only when positions and steps share their "
+                "fraction bits");
   const EmptyBlocks& eb = *banks.blocks;
   const unsigned lb = static_cast<unsigned>(eb.lb);
-  typename G::pos_t p[3] = {ray.p0[0], ray.p0[1], ray.p0[2]};
+  pos_t p[3] = {ray.p0[0], ray.p0[1], ray.p0[2]};
   const std::uint64_t n = ray.n.to_uint64();
+  const std::int64_t s_raw[3] = {signed_raw(ray.s[0]), signed_raw(ray.s[1]), signed_raw(ray.s[2])};
+  // Positions an unwrapped run may reach without the adder wrapping.
+  constexpr std::int64_t kPosMax = (std::int64_t{1} << (pos_t::width - 1)) - 1;
+  constexpr std::int64_t kPosMin = -kPosMax - 1;
   std::uint64_t skipped = 0;
-  for (std::uint64_t k = 0; k < n; ++k) {
+  for (std::uint64_t k = 0; k < n;) {
     std::int64_t block[3];
     VOXCAST_HLS_HOST_UNROLL for (int a = 0; a < 3; ++a) {
       typename InterpolationParams<P>::cpos_t cp;
       block[a] = static_cast<std::int64_t>(sample_cell<P>(r, p[a], a, cp).to_uint64() >> lb);
     }
-    if (eb.empty[static_cast<std::size_t>(block[0] + block[1] * eb.bx + block[2] * eb.bxy)]) {
-      ++skipped;
-    } else {
+    const std::uint8_t d =
+        eb.distance[static_cast<std::size_t>(block[0] + block[1] * eb.bx + block[2] * eb.bxy)];
+    if (d == 0) {
       const Sample<P> s = interpolate<P>(r, banks, p);
       if (!sink(k, p, s)) break;
+      step_position<P>(p, ray.s);
+      ++k;
+      continue;
     }
-    step_position<P>(p, ray.s);
+    // Every block within d - 1 of this one is empty: pass over the samples
+    // whose cells stay in that cube.
+    const std::int64_t margin = d - 1;
+    std::uint64_t run = n - k;
+    std::int64_t p_raw[3];
+    for (int a = 0; a < 3; ++a) {
+      p_raw[a] = signed_raw(p[a]);
+      const std::uint64_t inside = samples_inside<P>(
+          r, a, p_raw[a], s_raw[a], block[a] - margin, block[a] + margin, lb, run);
+      if (inside < run) run = inside;
+    }
+    bool wraps = false;
+    for (int a = 0; a < 3; ++a) {
+      const std::int64_t end = p_raw[a] + static_cast<std::int64_t>(run - 1) * s_raw[a];
+      wraps = wraps || end > kPosMax || end < kPosMin;
+    }
+    if (wraps) run = 1;  // never for a ray clipped to the volume; one step is always exact
+    for (int a = 0; a < 3; ++a)
+      write_bits(p[a], static_cast<std::uint64_t>(p_raw[a] + static_cast<std::int64_t>(run) * s_raw[a]));
+    skipped += run;
+    k += run;
   }
   *banks.skipped += skipped;
 }
