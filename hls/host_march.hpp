@@ -52,10 +52,13 @@ namespace host {
 // do not count: sample_cell clamps every position into it).
 struct EmptyBlocks {
   static constexpr std::uint8_t kMaxEmptyDistance = 255;
-  int lb = 0;                    // log2 of the block edge in cells
-  std::int64_t bx = 0, bxy = 0;  // blocks along x, per z slice
+  int lb = 0;                     // log2 of the block edge in cells
   std::int64_t n[3] = {0, 0, 0};  // blocks per axis
   std::vector<std::uint8_t> distance;
+
+  std::size_t index(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return static_cast<std::size_t>(x + n[0] * (y + n[1] * z));
+  }
 };
 
 // The exact chessboard (L-infinity) distance transform of the empty map, in
@@ -65,7 +68,7 @@ struct EmptyBlocks {
 inline void chessboard_distance(EmptyBlocks& eb) {
   const std::int64_t nx = eb.n[0], ny = eb.n[1], nz = eb.n[2];
   auto at = [&](std::int64_t x, std::int64_t y, std::int64_t z) -> std::uint8_t& {
-    return eb.distance[static_cast<std::size_t>(x + y * nx + z * nx * ny)];
+    return eb.distance[eb.index(x, y, z)];
   };
   auto pass = [&](int dir) {
     for (std::int64_t zi = 0; zi < nz; ++zi)
@@ -107,8 +110,6 @@ std::shared_ptr<const EmptyBlocks> empty_blocks(const bittrue::FrameSetup& fs,
   for (int i = 0; i <= L::entries; ++i) lr->prefix[i] = prefix[static_cast<std::size_t>(i)];
   auto out = std::make_shared<EmptyBlocks>();
   out->lb = b.block_log2;
-  out->bx = b.blocks[0];
-  out->bxy = std::int64_t{b.blocks[0]} * b.blocks[1];
   for (int a = 0; a < 3; ++a) out->n[a] = b.blocks[a];
   out->distance.resize(b.count());
   for (std::size_t i = 0; i < b.count(); ++i) {
@@ -157,10 +158,10 @@ std::uint64_t samples_inside(const GeometryRegisters<P>& r, int a, std::int64_t 
   if (s == 0) return unlimited;
   const std::int64_t last = static_cast<std::int64_t>(r.LAST[a].to_uint64());
   // The crop box is in whole voxels (box_t, an integer); positions in pos_t.
-  const std::int64_t lo_raw = signed_raw(r.LO[a]) * (std::int64_t{1} << F);
+  const std::int64_t lo_raw = r.LO[a].to_int64() * (std::int64_t{1} << F);
   if (s > 0) {
     // The highest cell a position can reach, and the first cell past the range.
-    std::int64_t max_cell = signed_raw(r.HI[a]);
+    std::int64_t max_cell = r.HI[a].to_int64();
     if (max_cell == last && last != 0) max_cell = last - 1;
     const std::int64_t t = (hi_block + 1) << lb;
     if (t > max_cell) return unlimited;
@@ -208,8 +209,7 @@ void march_ray(const GeometryRegisters<P>& r, const EngineBanks<P>& banks, const
       typename InterpolationParams<P>::cpos_t cp;
       block[a] = static_cast<std::int64_t>(sample_cell<P>(r, p[a], a, cp).to_uint64() >> lb);
     }
-    const std::uint8_t d =
-        eb.distance[static_cast<std::size_t>(block[0] + block[1] * eb.bx + block[2] * eb.bxy)];
+    const std::uint8_t d = eb.distance[eb.index(block[0], block[1], block[2])];
     if (d == 0) {
       const Sample<P> s = interpolate<P>(r, banks, p);
       if (!sink(k, p, s)) break;

@@ -16,21 +16,14 @@
 namespace voxcast::cosim {
 namespace {
 
-std::string extension_of(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 namespace im = image_module;
+using im::extension_of;
 
 // --- The module (image_io_module.hpp) ----------------------------------------
 // Where libvoxcast_image_io.so is looked for, in order: VOXCAST_IMAGE_IO_MODULE
-// alone when it is set; beside the running program, as installed
-// (VOXCAST_IMAGE_IO_FROM_BINDIR: bin/../lib/voxcast) and as built (every
-// program of the build tree sits one folder below its top, the module in
-// lib/voxcast of it); the build tree's own path.
+// alone when it is set; beside the running program as installed
+// (VOXCAST_IMAGE_IO_FROM_BINDIR: bin/../LIBDIR/voxcast); the build tree's own
+// path.
 std::vector<std::string> module_candidates() {
   if (const char* env = std::getenv("VOXCAST_IMAGE_IO_MODULE"); env && *env) return {env};
   std::vector<std::string> paths;
@@ -188,7 +181,5 @@ ImageFileInfo read_image_info(const std::string& path) {
   check(path, image_api().info(path, &i));
   return {i.width, i.height, i.channels, i.subimages, std::move(i.attributes)};
 }
-
-std::string image_library_version() { return image_api().library_version; }
 
 }  // namespace voxcast::cosim

@@ -49,7 +49,4 @@ struct ImageFileInfo {
 };
 ImageFileInfo read_image_info(const std::string& path);
 
-// The OpenImageIO version of the loaded module (loading it if need be).
-std::string image_library_version();
-
 }  // namespace voxcast::cosim

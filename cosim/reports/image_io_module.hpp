@@ -14,6 +14,9 @@
 // caller turns a message into voxcast::Error with its own context.
 #pragma once
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -56,8 +59,16 @@ struct Api {
   std::string (*read_float)(const std::string& path, int* width, int* height, int* nchannels,
                             std::vector<float>* data);
   std::string (*info)(const std::string& path, FileInfo* info);
-  const char* library_version;  // OpenImageIO's, e.g. "2.4.7"
 };
+
+// A file's extension in lower case ("x.EXR" -> ".exr"): what both sides read
+// the format from.
+inline std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
 }  // namespace voxcast::cosim::image_module
 

@@ -4,10 +4,7 @@
 // OpenImageIO.
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
 #include <array>
-#include <cctype>
-#include <filesystem>
 #include <memory>
 
 #include "cosim/reports/image_io_module.hpp"
@@ -27,18 +24,11 @@ OIIO::ImageSpec spec_of(const Raster& r) {
 
 std::string message(const std::string& what) { return what.empty() ? "unknown error" : what; }
 
-bool is_exr(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e == ".exr";
-}
-
 std::string write(const std::string& path, const Raster& raster) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) return "cannot write images of this type (" + message(OIIO::geterror()) + ")";
   OIIO::ImageSpec spec = spec_of(raster);
-  if (is_exr(path)) {
+  if (extension_of(path) == ".exr") {
     spec.attribute("compression", "zip");
     // OpenImageIO stamps an EXR with the time of writing (a DateTime
     // attribute, OpenEXR's capDate) unless the spec names one; an empty
@@ -104,7 +94,7 @@ std::string info(const std::string& path, FileInfo* out) {
   return "";
 }
 
-const Api kApi{kAbiVersion, write, write_gif, read_float, info, OIIO_VERSION_STRING};
+const Api kApi{kAbiVersion, write, write_gif, read_float, info};
 
 }  // namespace
 }  // namespace voxcast::cosim::image_module

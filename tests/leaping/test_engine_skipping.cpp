@@ -32,8 +32,6 @@ host::EmptyBlocks random_map(std::int64_t nx, std::int64_t ny, std::int64_t nz, 
   eb.n[0] = nx;
   eb.n[1] = ny;
   eb.n[2] = nz;
-  eb.bx = nx;
-  eb.bxy = nx * ny;
   eb.distance.resize(static_cast<std::size_t>(nx * ny * nz));
   std::bernoulli_distribution full(p_full);
   for (auto& d : eb.distance) d = full(rng) ? 0 : host::EmptyBlocks::kMaxEmptyDistance;
@@ -47,7 +45,7 @@ std::uint8_t brute_distance(const host::EmptyBlocks& full, std::int64_t x, std::
   for (std::int64_t qz = 0; qz < full.n[2]; ++qz)
     for (std::int64_t qy = 0; qy < full.n[1]; ++qy)
       for (std::int64_t qx = 0; qx < full.n[0]; ++qx)
-        if (full.distance[static_cast<std::size_t>(qx + qy * full.bx + qz * full.bxy)] == 0)
+        if (full.distance[full.index(qx, qy, qz)] == 0)
           best = std::min(best, std::max({std::abs(qx - x), std::abs(qy - y), std::abs(qz - z)}));
   return static_cast<std::uint8_t>(best);
 }
@@ -66,7 +64,7 @@ TEST(EngineSkipping, ChessboardDistanceIsTheBruteForceOne) {
     for (std::int64_t z = 0; z < m.nz; ++z)
       for (std::int64_t y = 0; y < m.ny; ++y)
         for (std::int64_t x = 0; x < m.nx; ++x)
-          ASSERT_EQ(after.distance[static_cast<std::size_t>(x + y * m.nx + z * m.nx * m.ny)],
+          ASSERT_EQ(after.distance[after.index(x, y, z)],
                     brute_distance(before, x, y, z))
               << m.nx << "x" << m.ny << "x" << m.nz << " p=" << m.p_full << " at " << x << ","
               << y << "," << z;
@@ -109,7 +107,7 @@ TEST(EngineSkipping, SamplesInsideIsTheFirstSampleOutsideTheCube) {
       for (int a = 0; a < 3; ++a) {
         // The crop box in whole voxels (box_t), as positions (pos_t).
         const std::int64_t one = std::int64_t{1} << kF;
-        const std::int64_t lo = host::signed_raw(r.LO[a]) * one, hi = host::signed_raw(r.HI[a]) * one;
+        const std::int64_t lo = r.LO[a].to_int64() * one, hi = r.HI[a].to_int64() * one;
         ASSERT_GT(hi - lo, 40 * one) << "a crop box of the scene's size";
         std::uniform_int_distribution<std::int64_t> pos(lo - 3 * one, hi + 3 * one);
         // Steps of 1/16 to 2 voxels either way (the brute force walks the range).
