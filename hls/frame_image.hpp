@@ -74,16 +74,25 @@ void visit_unit(RsqrtRom<P>& rom, V& v) {
 }
 
 template <class P, class V>
+void visit_entry(ClassEntry<P>& e, V& v) {
+  v.bits(e.r);
+  v.bits(e.g);
+  v.bits(e.b);
+  v.bits(e.alpha);
+  v.bits(e.ka);
+  v.bits(e.kd);
+  v.bits(e.ks);
+}
+
+template <class P, class V>
 void visit_unit(ClassificationTable<P>& t, V& v) {
-  for (ClassEntry<P>& e : t.entry) {
-    v.bits(e.r);
-    v.bits(e.g);
-    v.bits(e.b);
-    v.bits(e.alpha);
-    v.bits(e.ka);
-    v.bits(e.kd);
-    v.bits(e.ks);
-  }
+  for (ClassEntry<P>& e : t.entry) visit_entry(e, v);
+}
+
+template <class P, class V>
+void visit_unit(PreintegrationTable<P>& t, V& v) {
+  v.flag(t.enabled);
+  for (ClassEntry<P>& e : t.entry) visit_entry(e, v);
 }
 
 template <class P, class V>
@@ -148,6 +157,7 @@ void visit_frame(FrameState<P, U>& f, Units present, V& v) {
     visit_unit(f.minmax, v);
   }
   if (present.partial_segments) visit_unit(f.segments, v);
+  if (present.preintegration) visit_unit(f.preint, v);
 }
 
 }  // namespace image

@@ -52,7 +52,7 @@ inline FrameMode frame_mode(ref::RenderMode m) {
 template <Units V>
 using UnitsType = UnitSet<V.perspective, V.parallel_direction, V.gradients, V.classification,
                           V.reflectance_map, V.shader, V.compositor, V.ert, V.mip,
-                          V.space_leaping, V.partial_segments>;
+                          V.space_leaping, V.partial_segments, V.preintegration>;
 
 // Throws voxcast::Error unless a design with units U can render the frame
 // (its camera and render mode; an elaborated top runs only its scene's kind).
@@ -111,6 +111,15 @@ std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs
   } else if (fs.segments) {
     throw Error(engine + ": the design has no segment-opacity unit, the frame asks for "
                 "render.partial_segments = true (it was elaborated for another scene)");
+  }
+  if constexpr (U::preintegration) {
+    f->preint.enabled = false;
+    if (fs.preint_table && !load_preint_table<P>(f->preint, *fs.preint_table))
+      throw Error(engine + ": pre-integration table size does not match the profile");
+  } else if (fs.preint_table) {
+    throw Error(engine + ": the design has no pre-integration table, the frame asks for "
+                "render.classification = \"preintegrated\" (it was elaborated for another "
+                "scene)");
   }
   return f;
 }

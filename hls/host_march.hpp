@@ -27,7 +27,8 @@
 //   p + run·s, the same bits as run additions.
 //
 // A frame that asks for render.space_leaping leaps with the unit
-// (march_ray_leaping, on the same banks); a MIP frame takes every sample.
+// (march_ray_leaping, on the same banks); a MIP frame and a pre-integrated
+// one (§4a: a transparent sample may end a visible segment) take every sample.
 #pragma once
 
 #include "hls/pragma.hpp"
@@ -100,7 +101,10 @@ inline void chessboard_distance(EmptyBlocks& eb) {
 template <class P>
 std::shared_ptr<const EmptyBlocks> empty_blocks(const bittrue::FrameSetup& fs,
                                                 const bittrue::VoxelMemory& memory) {
-  if (fs.leap || fs.regs.mode == ref::RenderMode::Mip || !memory.leap_blocks) return nullptr;
+  // A pre-integrated frame classifies the segment in front of each sample, so a
+  // sample in an empty block may end a visible segment: every sample is taken.
+  if (fs.leap || fs.preint_table || fs.regs.mode == ref::RenderMode::Mip || !memory.leap_blocks)
+    return nullptr;
   const ref::MinMaxBlocks& b = *memory.leap_blocks;
   using L = LeapParams<P>;
   if (fs.class_table.size() != static_cast<std::size_t>(L::entries)) return nullptr;

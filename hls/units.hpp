@@ -34,12 +34,13 @@ struct Units {
   bool mip = true;              // maximum register and grey multiply [§7 MIP]
   bool space_leaping = true;    // min-max block memory, prefix table, leap search (docs/leaping.md)
   bool partial_segments = true;  // segment opacity: optical-depth table, 2^-x ROM [§7a]
+  bool preintegration = true;   // pre-integration table: (front, back) -> segment class [§4a]
 };
 
 // The unit set as a type, in the order of Units' fields.
 template <bool Perspective, bool ParallelDirection, bool Gradients, bool Classification,
           bool ReflectanceMap, bool Shader, bool Compositor, bool Ert, bool Mip,
-          bool SpaceLeaping, bool PartialSegments>
+          bool SpaceLeaping, bool PartialSegments, bool Preintegration>
 struct UnitSet {
   static constexpr bool perspective = Perspective;
   static constexpr bool parallel_direction = ParallelDirection;
@@ -52,15 +53,17 @@ struct UnitSet {
   static constexpr bool mip = Mip;
   static constexpr bool space_leaping = SpaceLeaping;
   static constexpr bool partial_segments = PartialSegments;
+  static constexpr bool preintegration = Preintegration;
 };
 
-using AllUnits = UnitSet<true, true, true, true, true, true, true, true, true, true, true>;
+using AllUnits =
+    UnitSet<true, true, true, true, true, true, true, true, true, true, true, true>;
 
 template <class U>
 constexpr Units units_of() {
   return Units{U::perspective, U::parallel_direction, U::gradients,  U::classification,
                U::reflectance_map, U::shader,    U::compositor, U::ert,
-               U::mip,          U::space_leaping, U::partial_segments};
+               U::mip,          U::space_leaping, U::partial_segments, U::preintegration};
 }
 
 constexpr bool same_units(Units a, Units b) {
@@ -68,7 +71,8 @@ constexpr bool same_units(Units a, Units b) {
          a.gradients == b.gradients && a.classification == b.classification &&
          a.reflectance_map == b.reflectance_map && a.shader == b.shader &&
          a.compositor == b.compositor && a.ert == b.ert && a.mip == b.mip &&
-         a.space_leaping == b.space_leaping && a.partial_segments == b.partial_segments;
+         a.space_leaping == b.space_leaping && a.partial_segments == b.partial_segments &&
+         a.preintegration == b.preintegration;
 }
 
 // The render modes a design with these units can run (the frame's mode
@@ -84,7 +88,8 @@ constexpr bool consistent(Units u) {
   return (can_mip(u) || can_composite(u)) && (u.perspective || u.parallel_direction) &&
          (!u.reflectance_map || u.gradients) && (!u.ert || can_composite(u)) &&
          (!u.space_leaping || can_composite(u)) &&  // leaping skips samples the TF makes empty
-         (!u.partial_segments || can_composite(u));  // it weights the compositor's opacity
+         (!u.partial_segments || can_composite(u)) &&  // it weights the compositor's opacity
+         (!u.preintegration || can_composite(u));  // it classifies for the compositor
 }
 static_assert(consistent(units_of<AllUnits>()), "the full design must be consistent");
 

@@ -250,23 +250,36 @@ void interpolation_stage(const BankPorts<P>& ports, int width, fifo<AccessToken<
 }
 
 // ---- 4. Classification (§4) and segment opacity (§7a) ----------------------------------------------
-template <class P, class U, class Segments>
-void classify_token(const ClassificationTable<P>& table, const Segments& segments,
-                    const SampleWeight<P, U>& w, ClassifiedToken<P, U>& o, Has<true>) {
+// `front` is the previous sample's value on the ray, the front of the segment
+// the pre-integration table classifies (§4a).
+template <class P, class U, class Segments, class Preint>
+void classify_token(const ClassificationTable<P>& table, const Preint& preint,
+                    const Segments& segments, const SampleWeight<P, U>& w, bool first,
+                    const typename ClassificationParams<P>::value_t& front,
+                    ClassifiedToken<P, U>& o, Has<true>) {
   if (o.flags.valid)
-    o.e = weigh_entry<P>(segments, w, o.s.value, classify<P>(table, o.s.value),
-                         Has<U::partial_segments>{});
+    o.e = weigh_entry<P>(
+        segments, w, o.s.value,
+        classify_entry<P>(table, preint, first, front, o.s.value, Has<U::preintegration>{}),
+        Has<U::partial_segments>{});
 }
-template <class P, class U, class Table, class Segments>
-void classify_token(const Table&, const Segments&, const SampleWeight<P, U>&,
-                    ClassifiedToken<P, U>&, Has<false>) {}
+template <class P, class U, class Table, class Preint, class Segments>
+void classify_token(const Table&, const Preint&, const Segments&, const SampleWeight<P, U>&, bool,
+                    const typename ClassificationParams<P>::value_t&, ClassifiedToken<P, U>&,
+                    Has<false>) {}
 
 template <class P, class U>
 void classification_stage(const UnitState<U::classification, ClassificationTable<P>>& table,
+                          const UnitState<U::preintegration, PreintegrationTable<P>>& preint,
                           const UnitState<U::partial_segments, SegmentOpacityTables<P>>& segments,
                           int width, fifo<SampleToken<P, U>>& samples,
                           fifo<ClassifiedToken<P, U>>& classified) {
   int ended = 0;
+  // §4a: the front sample register (value and gradient), and whether the next
+  // sample is its ray's first (which ends no segment). Rays arrive one after
+  // another.
+  Sample<P> front;
+  bool first = true;
   [[gnu::unused]] classification_loop : while (ended < width) {
     VOXCAST_HLS_PRAGMA(HLS PIPELINE II = 1)
     VOXCAST_HLS_PRAGMA(HLS LOOP_TRIPCOUNT min = 1 max = 3637248 avg = 65536)
@@ -274,9 +287,24 @@ void classification_stage(const UnitState<U::classification, ClassificationTable
     ClassifiedToken<P, U> o;
     o.s = t.s;
     o.flags = t.flags;
-    classify_token<P, U>(table, segments, t.w, o, Has<can_composite(units_of<U>())>{});
+    if (t.flags.valid && first) front = t.s;  // (read by nothing: the first ends no segment)
+    classify_token<P, U>(table, preint, segments, t.w, first, front.value, o,
+                         Has<can_composite(units_of<U>())>{});
+    // The shading stage lights the sample's gradient, or the segment's front's (§4a).
+    const Sample<P> lit = lit_sample<P>(preint, front, t.s, Has<U::preintegration>{});
+    [[gnu::unused]] lit_gradient_loop : for (int a = 0; a < 3; ++a) {
+      VOXCAST_HLS_PRAGMA(HLS UNROLL)
+      o.s.g[a] = lit.g[a];
+    }
+    if (t.flags.valid) {
+      front = t.s;
+      first = false;
+    }
+    if (t.flags.last) {
+      first = true;
+      ++ended;
+    }
     classified.write(o);
-    if (t.flags.last) ++ended;
   }
 }
 
@@ -415,6 +443,11 @@ void load_unit(const SegmentOpacityTables<P>& src, SegmentOpacityTables<P>& dst)
   load_table(src.tau, dst.tau);
   load_table(src.rom, dst.rom);
 }
+template <class P>
+void load_unit(const PreintegrationTable<P>& src, PreintegrationTable<P>& dst) {
+  dst.enabled = src.enabled;
+  load_table(src.entry, dst.entry);
+}
 inline void load_unit(const AbsentUnit&, AbsentUnit&) {}
 
 // The load phase. `src` is the frame state in external memory, `dst` the
@@ -431,6 +464,7 @@ void load_frame_state(const FrameState<P, U>& src, FrameState<P, U>& dst) {
   load_unit(src.reflectance, dst.reflectance);
   load_unit(src.minmax, dst.minmax);
   load_unit(src.segments, dst.segments);
+  load_unit(src.preint, dst.preint);
 }
 
 // ---- The region ----------------------------------------------------------------------------------
@@ -456,7 +490,8 @@ void render_row_streamed(const FrameState<P, U>& f, const BankPorts<P>& ports, i
   ray_setup_stage<P, U>(f.geometry, f.rsqrt, width, y, rays);
   march_stage<P, U>(f.geometry, f.leap, f.minmax, f.segments, mip, width, y, rays, accesses);
   interpolation_stage<P, U>(ports, width, accesses, interpolated);
-  classification_stage<P, U>(f.class_table, f.segments, width, interpolated, classified);
+  classification_stage<P, U>(f.class_table, f.preint, f.segments, width, interpolated,
+                             classified);
   shading_stage<P, U>(f.reflectance, f.reflectance_regs, shaded, width, classified,
                       shaded_samples);
   compositor_stage<P, U>(f.compositor, mip, width, y, shaded_samples, fb, samples);

@@ -62,18 +62,21 @@ using TopUnits = hls::AllUnits;
 #define VOXCAST_TOP_HAS_REFLECTANCE_MAP VOXCAST_ELABORATED_HAS_REFLECTANCE_MAP
 #define VOXCAST_TOP_HAS_SPACE_LEAPING VOXCAST_ELABORATED_HAS_SPACE_LEAPING
 #define VOXCAST_TOP_HAS_PARTIAL_SEGMENTS VOXCAST_ELABORATED_HAS_PARTIAL_SEGMENTS
+#define VOXCAST_TOP_HAS_PREINTEGRATION VOXCAST_ELABORATED_HAS_PREINTEGRATION
 #else
 #define VOXCAST_TOP_HAS_RSQRT 1
 #define VOXCAST_TOP_HAS_CLASSIFICATION 1
 #define VOXCAST_TOP_HAS_REFLECTANCE_MAP 1
 #define VOXCAST_TOP_HAS_SPACE_LEAPING 1
 #define VOXCAST_TOP_HAS_PARTIAL_SEGMENTS 1
+#define VOXCAST_TOP_HAS_PREINTEGRATION 1
 #endif
 static_assert((VOXCAST_TOP_HAS_RSQRT != 0) == TopUnits::perspective &&
                   (VOXCAST_TOP_HAS_CLASSIFICATION != 0) == TopUnits::classification &&
                   (VOXCAST_TOP_HAS_REFLECTANCE_MAP != 0) == TopUnits::reflectance_map &&
                   (VOXCAST_TOP_HAS_SPACE_LEAPING != 0) == TopUnits::space_leaping &&
-                  (VOXCAST_TOP_HAS_PARTIAL_SEGMENTS != 0) == TopUnits::partial_segments,
+                  (VOXCAST_TOP_HAS_PARTIAL_SEGMENTS != 0) == TopUnits::partial_segments &&
+                  (VOXCAST_TOP_HAS_PREINTEGRATION != 0) == TopUnits::preintegration,
               "the storage flags (VOXCAST_ELABORATED_HAS_*) disagree with the elaborated units: "
               "regenerate elaborated_config.hpp with `voxcast synth-script`");
 // The reflectance map's banks: bilinear mode reads entries k, k+1, k+side,

@@ -116,6 +116,13 @@ void vizard2_frame_top(const Frame* frame, const Word* bank0, const Word* bank1,
   VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.segments.tau type = ram_1p impl = bram)
   VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.segments.rom type = ram_2p impl = lutram)
 #endif
+#if VOXCAST_TOP_HAS_PREINTEGRATION
+  // docs/pipeline.md §4a: one (front, back) entry per sample, packed into one
+  // word as the classification table's; 2^(2 preint_addr_bits) words, deep
+  // enough for UltraRAM where the part has it (a cascade of block RAMs else).
+  VOXCAST_HLS_PRAGMA(HLS AGGREGATE variable = state.preint.entry compact = bit)
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.preint.entry type = ram_1p impl = uram)
+#endif
   (void)kReflectanceBanks;
 
   voxcast::hls::load_frame_state<TopProfile, TopUnits>(*frame, state);

@@ -23,6 +23,7 @@
 #include "hls/compositor.hpp"
 #include "hls/geometry_processor.hpp"
 #include "hls/interpolation_processor.hpp"
+#include "hls/preintegration_table.hpp"
 #include "hls/reflectance_map.hpp"
 #include "hls/segment_opacity.hpp"
 #include "hls/shader.hpp"
@@ -60,6 +61,9 @@ struct FrameState {
   // render.partial_segments (hls/segment_opacity.hpp, §7a): the optical-depth
   // table, loaded with the classification table, and the 2^-x ROM.
   UnitState<U::partial_segments, SegmentOpacityTables<P>> segments;
+  // render.classification = "preintegrated" (hls/preintegration_table.hpp, §4a):
+  // the 2-D table, loaded instead of using the classification table's entries.
+  UnitState<U::preintegration, PreintegrationTable<P>> preint;
 };
 
 // §1 for the cameras the design has: a one-camera design instantiates only its
@@ -261,31 +265,72 @@ VOXCAST_HLS_HOST_INLINE ClassEntry<P> weigh_entry(const Tables&, const W&,
   return e;
 }
 
+// §4 or §4a: the sample's entry from the classification table, or, in a
+// pre-integrated frame, the entry of the segment from the previous sample
+// (`front`) to this one from the pre-integration table.
+// The sample a classified entry is shaded with: the sample itself, or in a
+// pre-integrated frame the segment's front sample (§4a: where a ray entering
+// a surface gathers most of the segment's opacity), its gradient.
+template <class P>
+VOXCAST_HLS_HOST_INLINE Sample<P> lit_sample(const PreintegrationTable<P>& preint,
+                                             const Sample<P>& front, const Sample<P>& s,
+                                             Has<true>) {
+  return preint.enabled ? front : s;
+}
+template <class P, class Preint>
+VOXCAST_HLS_HOST_INLINE Sample<P> lit_sample(const Preint&, const Sample<P>&, const Sample<P>& s,
+                                             Has<false>) {
+  return s;
+}
+
+// `first`: the sample is its ray's first, which ends no segment.
+template <class P>
+VOXCAST_HLS_HOST_INLINE ClassEntry<P> classify_entry(
+    const ClassificationTable<P>& table, const PreintegrationTable<P>& preint, bool first,
+    const typename ClassificationParams<P>::value_t& front,
+    const typename ClassificationParams<P>::value_t& value, Has<true>) {
+  if (!preint.enabled) return classify<P>(table, value);
+  return first ? no_segment<P>() : classify_segment<P>(preint, front, value);
+}
+template <class P, class Preint>
+VOXCAST_HLS_HOST_INLINE ClassEntry<P> classify_entry(
+    const ClassificationTable<P>& table, const Preint&, bool,
+    const typename ClassificationParams<P>::value_t&,
+    const typename ClassificationParams<P>::value_t& value, Has<false>) {
+  return classify<P>(table, value);
+}
+
 // §4-7: classification, shading and the over operator for one sample of
-// segment weight w (§7a); false once ERT ends the ray.
+// segment weight w (§7a), `front` the previous sample (§4a; `first`: there is
+// none); false once ERT ends the ray.
 template <class P, class U, class Pos, class Tracer>
 VOXCAST_HLS_HOST_INLINE bool composite_sample(const FrameState<P, U>& f, bool shaded,
                                               const SampleWeight<P, U>& w, const Pos& p,
+                                              bool first, const Sample<P>& front,
                                               const Sample<P>& s, Accumulator<P>& acc,
                                               Tracer& tracer, Has<true>) {
-  const ClassEntry<P> e = weigh_entry<P>(f.segments, w, s.value,
-                                         classify<P>(f.class_table, s.value),
-                                         Has<U::partial_segments>{});
+  const ClassEntry<P> e = weigh_entry<P>(
+      f.segments, w, s.value,
+      classify_entry<P>(f.class_table, f.preint, first, front.value, s.value,
+                        Has<U::preintegration>{}),
+      Has<U::partial_segments>{});
   if (e.alpha == 0) {  // transparent: no change, no ERT test (§7)
     tracer.sample(p, s, e, Reflect<P>{0, 0}, ShadedColor<P>{}, acc);
     return true;
   }
   Reflect<P> r;
-  const ShadedColor<P> c = shade_sample<P, U>(f.reflectance, f.reflectance_regs, shaded, e, s, r);
+  const ShadedColor<P> c = shade_sample<P, U>(
+      f.reflectance, f.reflectance_regs, shaded, e,
+      lit_sample<P>(f.preint, front, s, Has<U::preintegration>{}), r);
   const bool goes_on = composite_step<P, U>(f.compositor, c, e.alpha, acc);
   tracer.sample(p, s, e, r, c, acc);
   return goes_on;
 }
 template <class P, class U, class Pos, class Tracer>
 VOXCAST_HLS_HOST_INLINE bool composite_sample(const FrameState<P, U>&, bool,
-                                              const SampleWeight<P, U>&, const Pos&,
-                                              const Sample<P>&, Accumulator<P>&, Tracer&,
-                                              Has<false>) {
+                                              const SampleWeight<P, U>&, const Pos&, bool,
+                                              const Sample<P>&, const Sample<P>&,
+                                              Accumulator<P>&, Tracer&, Has<false>) {
   return true;
 }
 
@@ -349,11 +394,16 @@ OutputPixel<P> cast_ray(const FrameState<P, U>& f, const Banks& banks, int px, i
   const RayWeights<P, U> weights =
       ray_weights<P>(f.segments, f.geometry, ray, px, py, Has<U::partial_segments>{});
   const std::uint64_t n = ray.n.to_uint64();
+  // §4a: the previous sample, the front of the next segment.
+  Sample<P> front;
   auto per_sample = [&](std::uint64_t k, const auto& p, const Sample<P>& s) -> bool {
     ++samples;
     if (mip_sample<P>(mip, peak, p, s, tracer, HasMip{})) return true;
     const SampleWeight<P, U> w = weight_of_sample<P>(weights, k, n, Has<U::partial_segments>{});
-    const bool goes_on = composite_sample<P, U>(f, shaded, w, p, s, acc, tracer, HasComposite{});
+    if (k == 0) front = s;  // (read by nothing: the first sample ends no segment)
+    const bool goes_on =
+        composite_sample<P, U>(f, shaded, w, p, k == 0, front, s, acc, tracer, HasComposite{});
+    front = s;
     if (!goes_on) tracer.ert(k);
     return goes_on;
   };

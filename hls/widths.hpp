@@ -189,6 +189,10 @@ constexpr int class_entry_bits(const ProfileFields& p) {
   return 3 * p.color_bits + p.alpha_bits + 3 * p.k_bits;
 }
 
+// ---- Pre-integration table (§4a) -------------------------------------------------------------
+// One entry per (front, back) address pair; the entry is a classification entry (§4.2).
+constexpr int preint_entries(const ProfileFields& p) { return 1 << (2 * p.preint_addr_bits); }
+
 // ---- Reflectance map (§5) -------------------------------------------------------------------
 constexpr bool rm_bilinear(const ProfileFields& p) { return p.rm_bilinear != 0; }
 // Cells of the cube map, entries per face row and per table: nearest mode (VIZARD II)

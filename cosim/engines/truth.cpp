@@ -48,6 +48,9 @@ ref::Scene truth_scene(const ref::Scene& scene, const TruthSettings& t) {
   // the entry, as before the key existed; at the truth's oversampling its own
   // end segments are 1/oversampling of a scene step.
   s.render.partial_segments = false;
+  // The truth is post-classified (issue 25): pre-integration is an
+  // approximation of the same integral, measured against the same image.
+  s.render.classification = ref::ClassificationMode::Post;
   return s;
 }
 
@@ -57,7 +60,7 @@ std::string truth_key(const ref::Scene& scene, const TruthSettings& t) {
   root.erase("rtl");
   if (toml::table* render = root["render"].as_table())
     for (const char* k : {"oversampling", "ert_threshold", "threads", "jitter", "space_leaping",
-                          "leap_block", "partial_segments"})
+                          "leap_block", "partial_segments", "classification"})
       render->erase(k);
   std::ostringstream os;
   os << root << "\n# truth oversampling " << fmt(t.oversampling) << ", ERT "

@@ -21,6 +21,7 @@
 #include "refmodel/bittrue/shading.hpp"
 #include "refmodel/render/camera.hpp"
 #include "refmodel/render/raycaster.hpp"
+#include "refmodel/volume/preintegration.hpp"
 
 namespace voxcast::cosim {
 namespace {
@@ -523,6 +524,84 @@ void heidelberg_hazards(const ref::Scene& scene, const ref::Volume& volume,
   out.push_back(std::move(h));
 }
 
+// ---- Pre-integration table (§4a.3) ----------------------------------------------------------
+//
+// The table's entry (f, b) holds the segment's opacity x (ref::preintegrate)
+// as q = U(x, alpha_bits): q = 0 for x below half an LSB, q = 1 - 2^-ab for x
+// above 1 - 2^-(ab+1). Over a ray of n such segments the float reference
+// accumulates 1 - (1 - x)^n, the card 1 - (1 - q)^n (slab_errors, the
+// accumulator's roundings included).
+//   preint-alpha-vanishes: the largest segment opacity, at least the faintest
+//                          declared material's, that the table stores as 0 (a
+//                          faint or thin layer between two samples lost),
+//                          always reported;
+//   preint-alpha-saturates: the opacity of a segment the table cannot make
+//                          opaque (1 - 2^-ab stored for x up to 1), reported
+//                          when its worst case reaches the guard's threshold.
+void preintegration_hazards(const ref::Scene& scene, const ref::Volume& volume,
+                            std::vector<Hazard>& out) {
+  if (!scene.render.preintegrated()) return;
+  const PrecisionProfile& p = scene.precision;
+  const int ab = p.alpha_bits;
+  const double step = 1.0 / scene.render.oversampling;
+  // The table over the value field's units, as the frame set-up builds it
+  // (bittrue::make_frame_setup): the same cached table.
+  const double scale = std::ldexp(1.0, bittrue::value_shift(p, volume));
+  std::vector<ref::TfPoint> points = ref::stored_transfer_function(scene, volume).points();
+  for (ref::TfPoint& pt : points) pt.value *= scale;
+  const ref::TransferFunction tf(points, scene.tf_interpolation, scene.material);
+  const auto table = bittrue::make_preint_table(p, tf, step);
+  const int side = 1 << p.preint_addr_bits;
+  const std::uint32_t full = (std::uint32_t{1} << ab) - 1;
+  // The faintest material the scene declares (a control point's step opacity):
+  // fainter segments lie inside ramps from transparency, whose rounding is the
+  // table's ordinary quantization (as for the 1-D table, table_hazards).
+  double faintest = 1.0;
+  for (const ref::TfPoint& pt : scene.tf_points)
+    if (pt.alpha > 0.0) faintest = std::min(faintest, ref::opacity_correct(pt.alpha, step));
+  double vanishing = 0.0, saturating = 1.0;  // the worst x of each kind
+  for (int f = 0; f < side; ++f)
+    for (int b = 0; b < side; ++b) {
+      const std::uint32_t q = (*table)[static_cast<std::size_t>(f * side + b)].alpha;
+      if (q != 0 && q != full) continue;
+      const double x = ref::preintegrate(tf, std::ldexp(f, p.value_bits - p.preint_addr_bits),
+                                         std::ldexp(b, p.value_bits - p.preint_addr_bits), step)
+                           .alpha;
+      if (q == 0 && x >= faintest * (1.0 - 1e-9)) vanishing = std::max(vanishing, x);
+      if (q == full && x > 1.0 - std::ldexp(1.0, -ab)) saturating = std::max(saturating, x);
+    }
+  const double n = max_ray_samples(scene, volume);
+  const std::string width = "precision.alpha_bits = " + std::to_string(ab);
+  if (vanishing > 0.0) {
+    const double worst = full_scale(p) * slab_errors(p, vanishing, 0.0, n).total;
+    {  // always reported, as alpha-vanishes: a layer the table cannot see
+      Hazard h = make_hazard("preint-alpha-vanishes", "render.classification", vanishing, width,
+                             worst);
+      std::ostringstream w;
+      w << "render.classification = \"preintegrated\": segments of opacity up to "
+        << std::setprecision(3) << vanishing << " are stored as 0 in " << width
+        << " (below half an LSB, " << std::ldexp(1.0, -(ab + 1))
+        << "); worst case " << guard_fmt(worst) << " LSB of an output channel";
+      h.message = w.str();
+      out.push_back(std::move(h));
+    }
+  }
+  if (saturating > 1.0 - std::ldexp(1.0, -ab)) {
+    const double q = 1.0 - std::ldexp(1.0, -ab);
+    const double worst = full_scale(p) * slab_errors(p, saturating, q, n).total;
+    if (worst >= hazard_threshold(p)) {
+      Hazard h = make_hazard("preint-alpha-saturates", "render.classification", saturating, width,
+                             worst);
+      std::ostringstream w;
+      w << "render.classification = \"preintegrated\": segments of opacity up to "
+        << std::setprecision(6) << saturating << " are stored as " << q << " in " << width
+        << ", never opaque; worst case " << guard_fmt(worst) << " LSB of an output channel";
+      h.message = w.str();
+      out.push_back(std::move(h));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume& volume) {
@@ -533,11 +612,14 @@ std::vector<Hazard> precision_hazards(const ref::Scene& scene, const ref::Volume
   }
   geometry_hazards(scene, volume, out);
   if (scene.render.mode == ref::RenderMode::Mip) return out;
-  alpha_hazards(scene, volume, out);
+  // A pre-integrated frame reads its opacities from the 2-D table, whose own
+  // rounding preintegration_hazards judges; the 1-D table's alphas are unused.
+  if (!scene.render.preintegrated()) alpha_hazards(scene, volume, out);
   table_hazards(scene, volume, out);
   between_entry_hazards(scene, volume, out);
   edge_hazards(scene, volume, out);
   reflectance_hazards(scene, out);
+  preintegration_hazards(scene, volume, out);
   return out;
 }
 

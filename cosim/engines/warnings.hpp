@@ -38,7 +38,8 @@ inline constexpr double kHazardFraction = 1.0 / 8.0;
 struct Hazard {
   // "alpha-vanishes" | "alpha-rounding" | "tf-no-entry" | "tf-between-entries" |
   // "tf-narrow-feature" | "rm-saturation" | "acc-rounding" | "heidelberg-density-vanishes" |
-  // "heidelberg-transmittance" | "geometry-position"
+  // "heidelberg-transmittance" | "geometry-position" | "preint-alpha-vanishes" |
+  // "preint-alpha-saturates"
   std::string kind;
   std::string key;       // the scene key, e.g. "classification.points[2].alpha", "lights[1].intensity"
   double value = 0.0;    // the key's value

@@ -140,7 +140,8 @@ void write_json(const std::string& path, const ref::Scene& scene, const Flythrou
   j["image"] = {{"width", scene.render.width}, {"height", scene.render.height},
                 {"oversampling", scene.render.oversampling},
                 {"ert_threshold", scene.render.ert_threshold},
-                {"partial_segments", scene.render.partial_segments}};
+                {"partial_segments", scene.render.partial_segments},
+                {"classification", ref::to_string(scene.render.classification)}};
   j["temporal_stability"] = stability_json(r.stability, r.has_truth);
   const FpsSummary fps = summarise(r.frames);
   j["fps"] = {{"min", fps.min}, {"mean", fps.mean}, {"max", fps.max},

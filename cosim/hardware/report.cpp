@@ -168,6 +168,26 @@ UnitOps classification(const ProfileFields& f, const ref::Elaboration& e) {
   return u;
 }
 
+// render.classification = "preintegrated" (docs/pipeline.md §4a,
+// hls/preintegration_table.hpp): the two addresses, the ray slot's front
+// sample register, the 2-D table of the classification entry's varying
+// fields (preint_side^2 entries: 2^16 x 32 bits = 2 Mbit at 8 bits per end
+// and 8-bit colour and alpha), and the first sample's transparent entry.
+UnitOps preintegration(const ProfileFields& f, const ref::Elaboration& e) {
+  UnitOps u{"preintegration", "§4a", {}, 0, 1};
+  const int entry = e.class_color_fields * f.color_bits +
+                    (e.class_alpha_varies ? f.alpha_bits : 0) + e.class_k_fields * f.k_bits;
+  const int address_round = f.preint_addr_bits + 1;  // Q_RND can carry, as §4.1's
+  u.ops.push_back(add("front, back address Q_RND(value·2^(pb - vb))", 2, address_round));
+  u.ops.push_back(cmp("front, back address clamp", 2, address_round));
+  u.ops.push_back(reg("front sample (value, gradient)",
+                      wd::sample_value_bits(f) + 3 * wd::sample_grad_bits(f)));
+  u.ops.push_back(mem(OpKind::Ram, "pre-integration table (fields that vary)", 1,
+                      e.preint_side * e.preint_side, entry));
+  u.ops.push_back(mux("first sample: transparent", 1, entry, 2));
+  return u;
+}
+
 UnitOps reflectance(const ProfileFields& f) {
   const bool bilinear = wd::rm_bilinear(f);
   UnitOps u{"reflectance_map", bilinear ? "§5.1-5.3, §5.5" : "§5.1-5.4", {}, 0, 1};
@@ -395,7 +415,8 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   // the cycle model (rsqrt in the ray set-up, stepping in the address stage, the
   // shader in the shading stage) are split by those depths.
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
-      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments});
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments,
+                   e.preintegration});
   std::vector<UnitOps> units;
   auto put = [&](UnitOps u, int latency, int ii = 1) {
     u.latency = latency;
@@ -412,7 +433,13 @@ std::vector<UnitOps> unit_operators(const ref::Elaboration& e,
   // Beside the direction and rsqrt pipeline, shorter than it: no latency.
   if (e.jitter) put(jitter(f), 0, l.ray_setup_interval);
   put(interpolation(f, e), l.interpolation);
-  if (e.classification) put(classification(f, e), l.classification);
+  // The pre-integration table reads beside the classification table, one clock
+  // deeper: the stage takes its depth (elaborate_latencies).
+  if (e.classification)
+    put(classification(f, e),
+        e.preintegration ? std::min(l.classification, hls::classification_depth)
+                         : l.classification);
+  if (e.preintegration) put(preintegration(f, e), l.classification);
   if (e.reflectance_map) put(reflectance(f), l.shading - hls::shader_depth);
   if (e.shader)
     put(shader(f, e.reflectance_map),
@@ -583,7 +610,8 @@ ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
     rep.units.push_back(std::move(ur));
   }
   const rtl::pipeline::UnitLatencies l = rtl::pipeline::elaborate_latencies(
-      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments});
+      pc.latency, {e.mip, e.reflectance_map, e.perspective, e.space_leaping, e.partial_segments,
+                   e.preintegration});
   rep.latency_ray_setup = l.ray_setup;
   // From a sample's address to its composited result (or the MIP register).
   rep.latency_sample = l.address + l.leap_lookup + l.interpolation + l.classification + l.shading +

@@ -80,7 +80,8 @@ hls::Units elaborated_units(const ref::Elaboration& e) {
                     .ert = e.ert,
                     .mip = e.mip,
                     .space_leaping = e.space_leaping,
-                    .partial_segments = e.partial_segments};
+                    .partial_segments = e.partial_segments,
+                    .preintegration = e.preintegration};
 }
 
 // One `/* name = */ true,` line per unit of hls::UnitSet, in its parameter order.
@@ -91,7 +92,7 @@ static std::string unit_set_arguments(const hls::Units& u) {
       {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
       {"compositor", u.compositor},         {"ert", u.ert},
       {"mip", u.mip},                       {"space_leaping", u.space_leaping},
-      {"partial_segments", u.partial_segments}};
+      {"partial_segments", u.partial_segments}, {"preintegration", u.preintegration}};
   std::string out;
   for (std::size_t i = 0; i < std::size(flags); ++i)
     out += std::string("    /* ") + flags[i].first + " = */ " + (flags[i].second ? "true" : "false") +
@@ -122,7 +123,8 @@ std::string elaborated_config_header(const ref::Scene& scene, const ref::Elabora
      << "#define VOXCAST_ELABORATED_HAS_CLASSIFICATION " << b01(u.classification) << "\n"
      << "#define VOXCAST_ELABORATED_HAS_REFLECTANCE_MAP " << b01(u.reflectance_map) << "\n"
      << "#define VOXCAST_ELABORATED_HAS_SPACE_LEAPING " << b01(u.space_leaping) << "\n"
-     << "#define VOXCAST_ELABORATED_HAS_PARTIAL_SEGMENTS " << b01(u.partial_segments) << "\n\n"
+     << "#define VOXCAST_ELABORATED_HAS_PARTIAL_SEGMENTS " << b01(u.partial_segments) << "\n"
+     << "#define VOXCAST_ELABORATED_HAS_PREINTEGRATION " << b01(u.preintegration) << "\n\n"
      << "#include \"hls/units.hpp\"\n#include \"refmodel/precision/profile_traits.hpp\"\n\n"
      << "// C++14, as the design (the vendor front ends' dialect).\n"
      << "namespace voxcast {\nnamespace elaborated {\n\n"

@@ -106,6 +106,10 @@ struct FrameSetup {
   std::vector<std::uint32_t> rm_specular;  // likewise
   std::optional<LeapTables> leap;          // render.space_leaping (never in MIP)
   std::optional<SegmentTables> segments;   // render.partial_segments (never in MIP)
+  // render.classification = "preintegrated" (§4a, never in MIP): 2^(2 preint_addr_bits)
+  // entries, front-major (entry (f << preint_addr_bits) | b), shared between frames of
+  // the same transfer function, step and widths (make_preint_table caches it).
+  std::shared_ptr<const std::vector<ClassEntry>> preint_table;
 };
 
 // Voxel values enter the value field scaled to its full range (docs/pipeline.md
@@ -137,6 +141,15 @@ VoxelMemory make_voxel_memory(const PrecisionProfile& profile, const ref::Volume
 // units (opacity correction is baked into the table).
 std::vector<ClassEntry> make_class_table(const PrecisionProfile& profile,
                                          const ref::TransferFunction& tf_stored, double step);
+// §4a.3 the pre-integration table: entry (f, b) classifies the segment, `step`
+// world units long, over which the value runs linearly from front address f to
+// back address b (ref::preintegrate, at stored value addr · 2^(vb - preint_addr_bits)):
+// the segment's opacity and its self-attenuated colour over that opacity, as
+// raw U fractions; ka, kd, ks of the back sample (the segment is shaded at its
+// end). Computed on all cores; the last few tables are kept, so a flythrough
+// or a sweep over one transfer function builds each once.
+std::shared_ptr<const std::vector<ClassEntry>> make_preint_table(
+    const PrecisionProfile& profile, const ref::TransferFunction& tf_stored, double step);
 void make_reflectance_maps(const PrecisionProfile& profile, const ref::ShadingSetup& shading,
                            std::vector<std::uint32_t>& diffuse,
                            std::vector<std::uint32_t>& specular);

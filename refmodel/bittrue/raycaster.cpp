@@ -34,6 +34,8 @@ FrameSetup make_frame_setup(const PrecisionProfile& profile, const ref::Scene& s
   }
   if (scene.render.partial_segments && scene.render.mode != ref::RenderMode::Mip)
     fs.segments = make_segment_tables(profile, fs.class_table);
+  if (scene.render.preintegrated() && scene.render.mode != ref::RenderMode::Mip)
+    fs.preint_table = make_preint_table(profile, tf_field, inputs.settings.step);
   return fs;
 }
 
@@ -125,6 +127,7 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
     double peak = 0.0;
     const BtSegmentWeights weights = bt_segment_weights(fs, ray, px, py);
     std::array<double, 3> pos = ray.p0;
+    BtSample front;  // §4a: the previous sample (the segment's front value and gradient)
     for (std::uint64_t j = 0; j < ray.n; ++j) {
       if (j > 0) pos = bt_step(pos, ray.s);
       // A sample in an empty block classifies transparent: skipped unread.
@@ -144,7 +147,16 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
         if (trace) trace->trace.push_back(st);
         continue;
       }
-      const ClassEntry& e = bt_classify(fs, s.value);
+      // §4a: the segment from the previous sample (the first sample's from itself).
+      // §4a: the segment from the previous sample; a ray's first sample opens
+      // the first segment and ends none (a transparent entry).
+      static const ClassEntry kNoSegment{};
+      const ClassEntry& e = !fs.preint_table ? bt_classify(fs, s.value)
+                            : j == 0         ? kNoSegment
+                                             : bt_classify_segment(fs, front.value, s.value);
+      // §4a: a segment is shaded with its front sample's gradient.
+      const std::array<double, 3> lit = fs.preint_table ? front.g : s.g;
+      front = s;
       st.class_address = bt_class_address(p, s.value);
       // §7a: the opacity for the sample's segment (the table's alpha but for the
       // first and last samples of a ray with render.partial_segments).
@@ -152,7 +164,7 @@ std::array<std::uint32_t, 4> bt_cast_ray(const FrameSetup& fs, const VoxelMemory
                                   bt_sample_weight(weights, j, ray.n));
       bool stop = false;
       if (st.alpha > 0.0) {
-        const BtReflect r = shaded ? bt_reflectance(fs, s.g) : BtReflect{};
+        const BtReflect r = shaded ? bt_reflectance(fs, lit) : BtReflect{};
         st.diffuse = r.D;
         st.specular = r.S;
         st.shaded = bt_shade(p, e, r, shaded);

@@ -3,10 +3,17 @@
 // functions, stored as the raw integers the card loads.
 #include <cmath>
 #include <cstddef>
+#include <deque>
+#include <mutex>
+#include <utility>
+
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/bittrue/quantize.hpp"
+#include "refmodel/parallel.hpp"
+#include "refmodel/volume/preintegration.hpp"
 
 namespace voxcast::bittrue {
 
@@ -36,6 +43,82 @@ std::vector<ClassEntry> make_class_table(const PrecisionProfile& profile,
     e.kd = raw_u(c.kd, profile.k_bits);
     e.ks = raw_u(c.ks, profile.k_bits);
   }
+  return table;
+}
+
+namespace {
+
+// The inputs a pre-integration table is a function of.
+struct PreintKey {
+  PrecisionProfile profile;
+  std::vector<ref::TfPoint> points;
+  ref::TfInterpolation interpolation;
+  ref::Material material;
+  double step;
+  bool operator==(const PreintKey& o) const {
+    if (!(profile == o.profile) || interpolation != o.interpolation || step != o.step ||
+        material.ka != o.material.ka || material.kd != o.material.kd ||
+        material.ks != o.material.ks || points.size() != o.points.size())
+      return false;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].value != o.points[i].value || points[i].color != o.points[i].color ||
+          points[i].alpha != o.points[i].alpha)
+        return false;
+    return true;
+  }
+};
+
+std::vector<ClassEntry> build_preint_table(const PrecisionProfile& profile,
+                                           const ref::TransferFunction& tf, double step) {
+  const int b = profile.preint_addr_bits;
+  const int side = 1 << b;
+  std::vector<ClassEntry> table(static_cast<std::size_t>(side) * static_cast<std::size_t>(side));
+  const auto value = [&](int a) {
+    return std::ldexp(static_cast<double>(a), profile.value_bits - b);
+  };
+  // Each entry on its own: the same bits for any thread count.
+  ref::parallel_for(
+      side,
+      [&](int f) {
+        for (int k = 0; k < side; ++k) {
+          const ref::SegmentClass seg = ref::preintegrate(tf, value(f), value(k), step);
+          const ref::Classified back = tf.classify(value(k));
+          const glm::dvec3 c = glm::clamp(seg.color(), 0.0, 1.0);
+          ClassEntry& e = table[static_cast<std::size_t>(f) * static_cast<std::size_t>(side) +
+                                static_cast<std::size_t>(k)];
+          e.r = raw_u(c.r, profile.color_bits);
+          e.g = raw_u(c.g, profile.color_bits);
+          e.b = raw_u(c.b, profile.color_bits);
+          e.alpha = raw_u(seg.alpha, profile.alpha_bits);
+          e.ka = raw_u(back.ka, profile.k_bits);
+          e.kd = raw_u(back.kd, profile.k_bits);
+          e.ks = raw_u(back.ks, profile.k_bits);
+        }
+      },
+      0);
+  return table;
+}
+
+}  // namespace
+
+std::shared_ptr<const std::vector<ClassEntry>> make_preint_table(
+    const PrecisionProfile& profile, const ref::TransferFunction& tf_stored, double step) {
+  // A few recent tables: the frames of a flythrough and the points of a sweep
+  // share their transfer function and step (0.1-0.3 s a table at 8 bits).
+  static std::mutex mutex;
+  static std::deque<std::pair<PreintKey, std::shared_ptr<const std::vector<ClassEntry>>>> cache;
+  constexpr std::size_t kCached = 4;
+  PreintKey key{profile, tf_stored.points(), tf_stored.interpolation(), tf_stored.material(), step};
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [k, t] : cache)
+      if (k == key) return t;
+  }
+  auto table = std::make_shared<const std::vector<ClassEntry>>(
+      build_preint_table(profile, tf_stored, step));
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.emplace_front(std::move(key), table);
+  if (cache.size() > kCached) cache.pop_back();
   return table;
 }
 

@@ -22,6 +22,18 @@ const ClassEntry& bt_classify(const FrameSetup& fs, double value) {
   return fs.class_table[static_cast<std::size_t>(bt_class_address(fs.profile, value))];
 }
 
+int bt_preint_address(const PrecisionProfile& p, double value) {
+  const double scaled = scale2(value, p.preint_addr_bits - p.value_bits);  // exact
+  const double last = std::ldexp(1.0, p.preint_addr_bits) - 1.0;
+  return static_cast<int>(sat(q_rnd(scaled, 0), 0.0, last));
+}
+
+const ClassEntry& bt_classify_segment(const FrameSetup& fs, double front, double back) {
+  const auto f = static_cast<std::size_t>(bt_preint_address(fs.profile, front));
+  const auto b = static_cast<std::size_t>(bt_preint_address(fs.profile, back));
+  return (*fs.preint_table)[(f << fs.profile.preint_addr_bits) | b];
+}
+
 double bt_alpha(const PrecisionProfile& p, const ClassEntry& e) {
   return from_raw(e.alpha, p.alpha_bits);
 }

@@ -21,6 +21,10 @@ namespace voxcast::bittrue {
 int bt_class_address(const PrecisionProfile& p, double value);
 // The entry at bt_class_address (value: vb.sf, on the sf grid).
 const ClassEntry& bt_classify(const FrameSetup& fs, double value);
+// §4a: addr = SAT(Q_RND(value · 2^(preint_addr_bits - vb), 0), 0, 2^preint_addr_bits - 1),
+// and the pre-integration entry of the segment from `front` to `back`.
+int bt_preint_address(const PrecisionProfile& p, double value);
+const ClassEntry& bt_classify_segment(const FrameSetup& fs, double front, double back);
 // An entry's opacity-corrected alpha as a value (raw · 2^-alpha_bits).
 double bt_alpha(const PrecisionProfile& p, const ClassEntry& e);
 

@@ -35,6 +35,9 @@ const std::vector<ProfileField>& profile_fields() {
       {"color_bits", &P::color_bits, 1, 16, "bits of r, g, b in the classification table"},
       {"alpha_bits", &P::alpha_bits, 1, 24, "bits of the opacity-corrected alpha"},
       {"k_bits", &P::k_bits, 1, 16, "bits of ka, kd, ks"},
+      // At most 2^20 entries: 4 x 12 bytes a frame already takes 12 MB on the host.
+      {"preint_addr_bits", &P::preint_addr_bits, 1, 10,
+       "pre-integration table address bits per segment end (2^(2b) entries)"},
       {"rm_res", &P::rm_res, 1, 256, "reflectance-map cells per cube-face edge"},
       {"rm_frac_bits", &P::rm_frac_bits, 1, 20, "fraction bits of reflectance-map entries"},
       {"rm_int_bits", &P::rm_int_bits, 0, 4, "integer bits of reflectance-map entries"},

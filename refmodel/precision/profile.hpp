@@ -29,6 +29,9 @@ struct PrecisionProfile {
   int color_bits = 8;         // r, g, b (unsigned fractions of 1)
   int alpha_bits = 8;         // opacity-corrected alpha (unsigned fraction of 1)
   int k_bits = 8;             // ka, kd, ks (unsigned fractions of 1)
+  // --- Pre-integration table (render.classification = "preintegrated") ---
+  int preint_addr_bits = 8;   // per sample of a segment: 2^(2 preint_addr_bits) entries
+                              // addressed by (front, back) value (Engel et al. 2001: 256 x 256)
   // --- Reflectance map and shader (§5-6) ---
   int rm_res = 16;            // cells along each edge of a cube-map face (6*rm_res^2 cells)
   int rm_frac_bits = 8;       // fraction bits of a reflectance-map entry

@@ -23,8 +23,9 @@
 #define VOXCAST_PRECISION_PROFILE_FIELDS(X)                                                      \
   X(addr_bits) X(pos_frac_bits) X(dir_frac_bits) X(rsqrt_seed_bits) X(t_frac_bits)               \
   X(weight_bits) X(value_bits) X(gradient_bits) X(gradient_frac_bits) X(sample_frac_bits)        \
-  X(tf_addr_bits) X(color_bits) X(alpha_bits) X(k_bits) X(rm_res) X(rm_frac_bits)                \
-  X(rm_int_bits) X(rm_bilinear) X(rm_weight_bits) X(shade_bits) X(acc_bits) X(out_bits)
+  X(tf_addr_bits) X(color_bits) X(alpha_bits) X(k_bits) X(preint_addr_bits) X(rm_res)          \
+  X(rm_frac_bits) X(rm_int_bits) X(rm_bilinear) X(rm_weight_bits) X(shade_bits) X(acc_bits)      \
+  X(out_bits)
 #define VOXCAST_HEIDELBERG_PROFILE_FIELDS(X)                                                     \
   X(addr_bits) X(view_bits) X(coord_frac_bits) X(value_bits) X(weight_bits)                      \
   X(weight_frac_bits) X(density_bits) X(gradient_bits) X(light_frac_bits) X(cos_frac_bits)       \
@@ -50,6 +51,7 @@ struct Vizard2Traits {
   static constexpr int color_bits = 8;
   static constexpr int alpha_bits = 8;
   static constexpr int k_bits = 8;
+  static constexpr int preint_addr_bits = 8;
   static constexpr int rm_res = 16;
   static constexpr int rm_frac_bits = 8;
   static constexpr int rm_int_bits = 0;
@@ -78,6 +80,7 @@ struct BalancedTraits {
   static constexpr int color_bits = 12;
   static constexpr int alpha_bits = 16;
   static constexpr int k_bits = 12;
+  static constexpr int preint_addr_bits = 8;
   static constexpr int rm_res = 32;
   static constexpr int rm_frac_bits = 12;
   static constexpr int rm_int_bits = 2;
@@ -106,6 +109,7 @@ struct PreciseTraits {
   static constexpr int color_bits = 16;
   static constexpr int alpha_bits = 20;
   static constexpr int k_bits = 16;
+  static constexpr int preint_addr_bits = 8;
   static constexpr int rm_res = 64;
   static constexpr int rm_frac_bits = 16;
   static constexpr int rm_int_bits = 2;

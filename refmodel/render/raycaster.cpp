@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "refmodel/parallel.hpp"
+#include "refmodel/volume/preintegration.hpp"
 
 namespace voxcast::ref {
 
@@ -206,6 +207,9 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
   // render.partial_segments: the clipped length in steps, for segment_weight.
   const double length = seg->length() / settings.step;
   Accumulator acc;
+  // render.classification = "preintegrated": the previous sample's value and gradient.
+  double front = 0.0;
+  Vec3 front_gradient(0.0);
   for (std::uint32_t k = 0; k < n; ++k) {
     const Vec3 p = position(k);
     // A sample in an empty block classifies transparent: skipped unread.
@@ -215,7 +219,33 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
     }
     const Sample s = interpolate(*rv.volume, *rv.gradients, p);
     ++st.samples;
-    const Classified c = tf.classify(s.value);
+    Classified c = tf.classify(s.value);
+    if (settings.preintegrated) {
+      // §4a: the segment from the previous sample to this one, integrated
+      // exactly; a ray's first sample opens its first segment and ends none.
+      // The segment is lit with the gradient at its front, where a ray entering
+      // a surface gathers most of its opacity (docs/pipeline.md §4a).
+      const double f = front;
+      const Vec3 lit = front_gradient;
+      front = s.value;
+      front_gradient = s.gradient;
+      if (k == 0) continue;
+      const SegmentClass sc = tf.max_alpha(std::min(f, s.value), std::max(f, s.value)) > 0.0
+                                  ? preintegrate(tf, f, s.value, settings.step)
+                                  : SegmentClass{};
+      if (sc.alpha <= 0.0) continue;
+      c.color = sc.color();
+      const Vec3 color =
+          settings.mode == RenderMode::Shaded
+              ? shade(c, reflectance(shading, surface_normal(lit, rv.world_scale)))
+              : c.color;
+      composite(acc, color, sc.alpha);
+      if (ert && acc.alpha >= settings.ert_threshold) {
+        st.terminated_early = k + 1 < n;
+        break;
+      }
+      continue;
+    }
     if (c.alpha <= 0.0) continue;
     // Opacity correction for the segment the sample stands for: one step, or
     // with render.partial_segments the first and last segments' lengths.
@@ -246,6 +276,7 @@ RenderSettings make_render_settings(const Scene& scene) {
   s.ert_threshold = scene.render.ert_threshold;
   if (scene.render.jitter) s.jitter_bits = scene.precision.t_frac_bits;
   s.partial_segments = scene.render.partial_segments;
+  s.preintegrated = scene.render.preintegrated() && scene.render.mode != RenderMode::Mip;
   return s;
 }
 

@@ -116,6 +116,9 @@ struct RenderSettings {
   double ert_threshold = 0.98;  // >= 1 disables early ray termination
   int jitter_bits = 0;          // render.jitter: start offset resolution (0 = off)
   bool partial_segments = false;  // render.partial_segments: segment_weight()
+  // render.classification = "preintegrated" (docs/pipeline.md §4a): each sample
+  // classifies the segment from the previous one (preintegrate(), exact).
+  bool preintegrated = false;
 };
 
 // render.partial_segments (docs/pipeline.md §7a): the length, in steps, of the

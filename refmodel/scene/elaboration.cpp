@@ -46,6 +46,13 @@ void size_from_data(Elaboration& e, const TransferFunction& tf, const DataRange&
                                                                        p.value_bits);
   const double last = std::min(std::ldexp(1.0, p.tf_addr_bits) - 1.0, std::floor(top + 0.5));
   e.class_entries = static_cast<int>(last) + 1;
+  // §4a.1: the same bound at the pre-integration table's resolution, per segment end.
+  const double preint_top = std::ldexp(static_cast<double>(r.max_stored),
+                                       shift + p.preint_addr_bits - p.value_bits);
+  e.preint_side = static_cast<int>(
+                      std::min(std::ldexp(1.0, p.preint_addr_bits) - 1.0,
+                               std::floor(preint_top + 0.5))) +
+                  1;
   e.class_color_fields = (varies(tf, [](const TfPoint& q) { return q.color.x; }) ? 1 : 0) +
                          (varies(tf, [](const TfPoint& q) { return q.color.y; }) ? 1 : 0) +
                          (varies(tf, [](const TfPoint& q) { return q.color.z; }) ? 1 : 0);
@@ -148,6 +155,16 @@ void elaborate_options(Elaboration& e, const RenderDesc& render, const std::arra
                                             "(docs/pipeline.md §7a)"});
   } else {
     e.partial_segments = true;
+  }
+  if (!render.preintegrated()) {
+    e.omitted.push_back({"preintegration", "render.classification = \"post\": one table read "
+                                           "per sample value, no 2-D segment table "
+                                           "(docs/pipeline.md §4a)"});
+  } else if (render.mode == RenderMode::Mip) {
+    e.omitted.push_back({"preintegration", "render.mode = mip: the maximum of the values needs "
+                                           "no classification (docs/pipeline.md §4a)"});
+  } else {
+    e.preintegration = true;
   }
 }
 

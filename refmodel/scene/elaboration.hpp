@@ -59,6 +59,12 @@ struct Elaboration {
   // render.partial_segments (docs/pipeline.md §7a): the segment-opacity unit,
   // its optical-depth table and its 2^-x ROM; never in MIP (no opacity).
   bool partial_segments = false;
+  // render.classification = "preintegrated" (docs/pipeline.md §4a): the 2-D
+  // pre-integration table, preint_side^2 entries the data can address (front
+  // and back each below round(max · 2^(preint_addr_bits - vb)) + 1), with the
+  // classification entry's varying fields; never in MIP.
+  bool preintegration = false;
+  int preint_side = 256;
   std::vector<Omission> omitted;
 };
 

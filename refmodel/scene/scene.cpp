@@ -18,6 +18,9 @@ const char* to_string(RenderMode m) {
   }
   return "?";
 }
+const char* to_string(ClassificationMode m) {
+  return m == ClassificationMode::Preintegrated ? "preintegrated" : "post";
+}
 const char* to_string(LightType t) {
   return t == LightType::Directional ? "directional" : "headlight";
 }

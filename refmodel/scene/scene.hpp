@@ -47,6 +47,12 @@ struct CameraDesc {
 
 enum class RenderMode { Shaded, Unshaded, Mip };
 
+// How a sample is classified (render.classification): "post" looks the
+// interpolated value up in the 1-D table (§4, VIZARD II); "preintegrated"
+// classifies the segment from the previous sample to this one through the 2-D
+// pre-integration table (§4a; Engel, Kraus and Ertl 2001).
+enum class ClassificationMode { Post, Preintegrated };
+
 struct RenderDesc {
   int width = 256;
   int height = 256;
@@ -67,6 +73,12 @@ struct RenderDesc {
   // (opacity correction at the fractional step), so that the image is
   // continuous in the camera.
   bool partial_segments = true;
+  // Issue 25 (docs/pipeline.md §4a): pre-integrated classification. It
+  // classifies whole segments between samples, so a scene that asks for it
+  // has render.partial_segments off unless it sets both (an error), and it
+  // cannot leap (a leap would lose the segment's front value).
+  ClassificationMode classification = ClassificationMode::Post;
+  bool preintegrated() const { return classification == ClassificationMode::Preintegrated; }
 };
 
 enum class LightType { Directional, Headlight };
@@ -166,6 +178,7 @@ struct Scene {
 
 const char* to_string(Projection p);
 const char* to_string(RenderMode m);
+const char* to_string(ClassificationMode m);
 const char* to_string(LightType t);
 
 // The transfer function of the scene in the volume's stored units.

@@ -58,7 +58,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
       {"camera.path[]", {"eye", "center", "up"}},
       {"render", {"width", "height", "mode", "oversampling", "ert_threshold", "background",
                   "frames", "threads", "algorithm", "space_leaping", "leap_block", "jitter",
-                  "partial_segments"}},
+                  "partial_segments", "classification"}},
       {"lights[]", {"type", "direction", "intensity"}},
       // VIRIM (docs/heidelberg.md).
       {"heidelberg", {"diffuse_0", "diffuse_45", "specular_45", "luminosity", "light",
@@ -469,6 +469,23 @@ void read_render(const TableReader& r, RenderDesc& d) {
     r.fail("leap_block", "= " + std::to_string(d.leap_block) + " must be a power of two (4..64)");
   d.jitter = r.boolean("jitter", d.jitter);
   d.partial_segments = r.boolean("partial_segments", d.partial_segments);
+  d.classification =
+      r.string("classification", ref::to_string(d.classification), {"post", "preintegrated"}) ==
+              "preintegrated"
+          ? ClassificationMode::Preintegrated
+          : ClassificationMode::Post;
+  if (d.preintegrated()) {
+    // §4a: a segment table classifies whole steps between two samples.
+    if (d.space_leaping)
+      r.fail("space_leaping", "= true cannot be combined with classification = "
+                              "\"preintegrated\": a leap drops the sample in front of the "
+                              "next segment (docs/pipeline.md §4a)");
+    if (r.has("partial_segments") && d.partial_segments)
+      r.fail("partial_segments", "= true cannot be combined with classification = "
+                                 "\"preintegrated\": the segment table holds whole steps "
+                                 "(docs/pipeline.md §4a)");
+    d.partial_segments = false;
+  }
 }
 
 void read_lights(const TableReader& root, std::vector<Light>& lights) {
@@ -626,6 +643,10 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   read_classification(top.table("classification"), s);
   if (top.has("camera")) read_camera(top.table("camera"), s.camera);
   read_render(top.table("render"), s.render);
+  if (s.render.preintegrated() && s.algorithm == Algorithm::Heidelberg)
+    top.table("render").fail("classification",
+                             "= \"preintegrated\" applies only to the ray caster (VIRIM "
+                             "composites whole slices)");
   read_lights(top, s.lights);
   read_precision(top.table("precision"), s);
   read_rtl(top.table("rtl"), s.base_dir, s.rtl);
@@ -732,7 +753,8 @@ std::string scene_to_toml(const Scene& s) {
                      {"space_leaping", s.render.space_leaping},
                      {"leap_block", s.render.leap_block},
                      {"jitter", s.render.jitter},
-                     {"partial_segments", s.render.partial_segments}};
+                     {"partial_segments", s.render.partial_segments},
+                     {"classification", ref::to_string(s.render.classification)}};
   toml::array lights;
   for (const Light& l : s.lights) {
     toml::table t{{"type", to_string(l.type)}, {"intensity", l.intensity}};

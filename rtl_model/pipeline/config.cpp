@@ -61,6 +61,8 @@ UnitLatencies elaborate_latencies(UnitLatencies l, const ElaboratedUnits& units)
   }
   if (units.partial_segments && !units.mip)
     l.shading = std::max(l.shading, hls::segment_opacity_depth);
+  if (units.preintegration && !units.mip)
+    l.classification = std::max(l.classification, hls::preintegration_depth);
   return l;
 }
 

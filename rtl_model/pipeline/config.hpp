@@ -20,6 +20,7 @@
 #include "hls/classification_table.hpp"
 #include "hls/geometry_processor.hpp"
 #include "hls/interpolation_processor.hpp"
+#include "hls/preintegration_table.hpp"
 #include "hls/reflectance_map.hpp"
 #include "hls/segment_opacity.hpp"
 #include "hls/shader.hpp"
@@ -107,6 +108,10 @@ struct ElaboratedUnits {
   // runs beside the reflectance map and the shader; the stage takes the longer
   // of the two (an unshaded frame's single clock grows to the unit's depth).
   bool partial_segments = false;
+  // render.classification = "preintegrated" (docs/pipeline.md §4a): the 2-D
+  // table replaces the classification table's read; the stage takes its depth
+  // (one clock more: the cascaded RAM's output register).
+  bool preintegration = false;
 };
 // Stages of the rsqrt unit inside UnitLatencies::ray_setup (docs/pipeline.md
 // §1.2; hls/geometry_processor.hpp lists them).

@@ -30,6 +30,9 @@
 //     stage's entry takes the segment-opacity unit's weighted alpha for a
 //     ray's first and last samples (hls::segment_opacity, the weights from
 //     hls::segment_weights at set-up); its clocks overlap the shading stage.
+//   - render.classification = "preintegrated" (§4a): the classification
+//     stage reads the pre-integration table at (the slot's previous value,
+//     the sample's value) instead, one clock deeper (hls::preintegration_depth).
 //   - Each unit is a pipeline of its latency with one result per clock; the
 //     FIFO after it has latency + fifo_depth entries (valid/ready).
 // A frame ends when the last pixel is written and every sample still in
@@ -146,7 +149,8 @@ class RayPipeline {
         c.latency, {frame.mode == hls::FrameMode::Mip, frame.mode == hls::FrameMode::Shaded,
                     frame.geometry.perspective,
                     frame.leap.enabled && frame.mode != hls::FrameMode::Mip,
-                    frame.segments.enabled && frame.mode != hls::FrameMode::Mip});
+                    frame.segments.enabled && frame.mode != hls::FrameMode::Mip,
+                    frame.preint.enabled && frame.mode != hls::FrameMode::Mip});
     return c;
   }
 
@@ -230,6 +234,9 @@ class RayPipeline {
     hls::Accumulator<P> acc;
     typename C::value_t peak = 0;
     hls::SegmentWeights<P> weights;  // §7a: the first and last samples' segment weights
+    // §4a: the ray's previous sample at the classification stage (the front
+    // of the next segment: its value and gradient), a register per ray slot.
+    hls::Sample<P> front;
     // The next sample's bank access and DIMM addresses, computed once and
     // held until it is issued (row-hit issue compares them every clock).
     bool next_known = false;
@@ -455,8 +462,15 @@ class RayPipeline {
     out.pos = in.pos;
     out.s = in.s;
     if (!mip_) {
-      const Slot& s = slots_[static_cast<std::size_t>(in.slot)];
-      out.e = hls::classify<P>(f_.class_table, in.s.value);
+      Slot& s = slots_[static_cast<std::size_t>(in.slot)];
+      // §4a: a ray's samples reach this stage in order; its first (pos 0)
+      // ends no segment.
+      out.e = hls::classify_entry<P>(f_.class_table, f_.preint, in.pos == 0, s.front.value,
+                                     in.s.value, hls::Has<true>{});
+      // The shading stage lights the segment's front gradient (§4a).
+      if (f_.preint.enabled)
+        for (int a = 0; a < 3; ++a) out.s.g[a] = s.front.g[a];
+      s.front = in.s;
       out.e.alpha = hls::segment_opacity<P>(f_.segments, hls::class_address<P>(in.s.value),
                                             out.e.alpha,
                                             hls::sample_weight<P>(s.weights, in.pos, s.n));

@@ -47,7 +47,8 @@ constexpr hls::Units kMipParallel{.perspective = false,
                                   .ert = false,
                                   .mip = true,
                                   .space_leaping = false,
-                                  .partial_segments = false};
+                                  .partial_segments = false,
+                                  .preintegration = false};
 // Perspective, unshaded, ERT off: no view-direction register, gradients,
 // reflectance map, ERT comparator or MIP unit.
 constexpr hls::Units kUnshadedNoErt{.perspective = true,
@@ -60,7 +61,8 @@ constexpr hls::Units kUnshadedNoErt{.perspective = true,
                                     .ert = false,
                                     .mip = false,
                                     .space_leaping = false,
-                                    .partial_segments = true};
+                                    .partial_segments = true,
+                                    .preintegration = false};
 // Parallel, shaded, ERT on: everything but the perspective units and MIP.
 constexpr hls::Units kShadedParallel{.perspective = false,
                                      .parallel_direction = true,
@@ -72,7 +74,8 @@ constexpr hls::Units kShadedParallel{.perspective = false,
                                      .ert = true,
                                      .mip = false,
                                      .space_leaping = false,
-                                     .partial_segments = true};
+                                     .partial_segments = true,
+                                    .preintegration = false};
 
 using Word = hls::InterpolationParams<voxcast::BalancedTraits>::packed_word_t;
 
@@ -120,7 +123,7 @@ std::map<std::string, bool> flags_of(const hls::Units& u) {
           {"reflectance_map", u.reflectance_map}, {"shader", u.shader},
           {"compositor", u.compositor},         {"ert", u.ert},
           {"mip", u.mip},                       {"space_leaping", u.space_leaping},
-          {"partial_segments", u.partial_segments}};
+          {"partial_segments", u.partial_segments}, {"preintegration", u.preintegration}};
 }
 
 std::string read(const fs::path& p) {
