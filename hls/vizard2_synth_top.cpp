@@ -118,10 +118,11 @@ void vizard2_frame_top(const Frame* frame, const Word* bank0, const Word* bank1,
 #endif
 #if VOXCAST_TOP_HAS_PREINTEGRATION
   // docs/pipeline.md §4a: one (front, back) entry per sample, packed into one
-  // word as the classification table's; 2^(2 preint_addr_bits) words, deep
-  // enough for UltraRAM where the part has it (a cascade of block RAMs else).
+  // word as the classification table's; 2^(2 preint_addr_bits) words, a
+  // cascade of block RAMs on every part `voxcast report` prices (impl = uram
+  // on an UltraScale+ part: 16 blocks at 8 bits per end).
   VOXCAST_HLS_PRAGMA(HLS AGGREGATE variable = state.preint.entry compact = bit)
-  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.preint.entry type = ram_1p impl = uram)
+  VOXCAST_HLS_PRAGMA(HLS BIND_STORAGE variable = state.preint.entry type = ram_1p impl = bram)
 #endif
   (void)kReflectanceBanks;
 

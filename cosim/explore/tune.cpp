@@ -61,6 +61,9 @@ std::vector<TuneAxis> default_tune_axes(const ref::Elaboration& e) {
     axes.push_back({"color_bits", 6, 12});
     axes.push_back({"alpha_bits", 8, 16});
   }
+  // §4a: a quarter of the 2-D table per bit; below 5 bits (32 addresses per end)
+  // a segment's ends are coarser than most transfer functions' features.
+  if (e.preintegration) axes.push_back({"preint_addr_bits", 5, 8});
   if (e.reflectance_map) axes.push_back({"rm_frac_bits", 6, 12});
   if (e.shader) axes.push_back({"shade_bits", 8, 12});
   if (e.compositor || e.mip) axes.push_back({"acc_bits", 10, 16});
@@ -95,8 +98,11 @@ TuneResult run_tune(const ref::Scene& scene, const TuneOptions& o) {
   const ref::DataRange range = ref::data_range(sv.volume, sv.gradients);
   const ref::TransferFunction tf = ref::stored_transfer_function(scene, sv.volume);
   auto elaborate = [&](const PrecisionProfile& p) {
-    return ref::elaborate(p, scene.render.mode, scene.camera.projection,
-                          scene.render.ert_threshold, tf, range);
+    ref::Elaboration e = ref::elaborate(p, scene.render.mode, scene.camera.projection,
+                                        scene.render.ert_threshold, tf, range);
+    // The pre-integration table is priced with the widths it is tuned over.
+    e.preintegration = scene.render.preintegrated() && scene.render.mode != ref::RenderMode::Mip;
+    return e;
   };
   const Part& part = find_part(o.part);
 
