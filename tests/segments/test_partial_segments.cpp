@@ -30,9 +30,15 @@
 #include "refmodel/scene/elaboration.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 #include "rtl_model/engine.hpp"
+#include "tests/segments/segment_engines.hpp"
 
 namespace voxcast::test {
 namespace VOXCAST_UNITY_ID {
+
+using segments::Frame;
+using segments::prepare;
+using segments::small_scene;
+constexpr const char* kOrigin = "partial segments engines";
 
 // A constant volume of edge n (stored value 100) with its gradients.
 cosim::SceneVolume constant_volume(int n) {
@@ -94,16 +100,6 @@ long pixels_beyond_one_lsb(const std::vector<long>& a, const std::vector<long>& 
     n += d > 1 ? 1 : 0;
   }
   return n;
-}
-
-struct Frame {
-  bittrue::FrameSetup setup;
-  bittrue::VoxelMemory memory;
-};
-Frame prepare(const ref::Scene& s, const cosim::SceneVolume& sv) {
-  const ref::RenderInputs in = ref::make_render_inputs(s, sv.volume, sv.gradients, s.camera.pose);
-  return {bittrue::make_frame_setup(s.precision, s, in),
-          bittrue::make_voxel_memory(s.precision, sv.volume, sv.gradients)};
 }
 
 // The largest change of a pixel channel, in output LSBs, between the eye at E
@@ -214,20 +210,6 @@ TEST(PartialSegments, ConstantMediumOpacityIsClosedFormForAnyLength) {
     }
 }
 
-// A shaded phantom, small enough for every engine in a unit test.
-ref::Scene small_scene(const ref::Overrides& overrides) {
-  return ref::parse_scene(
-      "[volume]\nsource = \"phantom:shepp-logan?size=24&aa=2\"\n"
-      "[classification]\npoints = [ {value = 0, alpha = 0.0}, "
-      "{value = 30, color = [0.9, 0.6, 0.4], alpha = 0.05}, "
-      "{value = 200, color = [0.5, 0.8, 1.0], alpha = 0.7} ]\n"
-      "[camera]\neye = [18.7, -28.8, 21.1]\ncenter = [11.5, 11.5, 11.5]\nfov_deg = 45\n"
-      "[render]\nwidth = 20\nheight = 20\noversampling = 1.5\n"
-      "[[lights]]\ntype = \"directional\"\ndirection = [1, -1, 1]\nintensity = 0.6\n"
-      "[[lights]]\ntype = \"headlight\"\nintensity = 0.6\n",
-      "partial segments engines", ".", overrides);
-}
-
 // hls == bit-true == the cycle model with partial segments on, in every mode
 // and with jitter and space leaping; a shaded frame's cycles do not change.
 TEST(PartialSegments, EnginesBitExactAndShadedCyclesUnchanged) {
@@ -242,17 +224,13 @@ TEST(PartialSegments, EnginesBitExactAndShadedCyclesUnchanged) {
       on.push_back(extra);
       off.push_back(extra);
     }
-    const ref::Scene s = small_scene(on);
-    const ref::Scene s0 = small_scene(off);
+    const ref::Scene s = small_scene(on, kOrigin);
+    const ref::Scene s0 = small_scene(off, kOrigin);
     static const cosim::SceneVolume sv = cosim::load_scene_volume(s);
     const Frame f = prepare(s, sv), f0 = prepare(s0, sv);
-    ref::FrameStats hs, bs;
-    const ref::QuantImage h = cosim::hls_render_image(f.setup, f.memory, 2, &hs);
-    const ref::QuantImage b = bittrue::bt_render_image(f.setup, f.memory, 2, &bs);
-    const rtl::RtlResult r = rtl::rtl_render(f.setup, f.memory);
-    EXPECT_EQ(h.pixels, b.pixels);
-    EXPECT_EQ(h.pixels, r.image.pixels);
-    EXPECT_EQ(hs, bs);
+    const segments::EngineRun run = segments::expect_engines_agree(f);
+    const ref::QuantImage& h = run.hls;
+    const rtl::RtlResult& r = run.rtl;
     // The weights change the image (somewhere; not in MIP), never the samples.
     const ref::QuantImage h0 = cosim::hls_render_image(f0.setup, f0.memory, 2);
     if (s.render.mode != ref::RenderMode::Mip) {

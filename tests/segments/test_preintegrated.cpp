@@ -37,19 +37,15 @@
 #include "refmodel/scene/scene_toml.hpp"
 #include "refmodel/volume/preintegration.hpp"
 #include "rtl_model/engine.hpp"
+#include "tests/segments/segment_engines.hpp"
 
 namespace voxcast::test {
 namespace VOXCAST_UNITY_ID {
 
-struct Frame {
-  bittrue::FrameSetup setup;
-  bittrue::VoxelMemory memory;
-};
-Frame prepare(const ref::Scene& s, const cosim::SceneVolume& sv) {
-  const ref::RenderInputs in = ref::make_render_inputs(s, sv.volume, sv.gradients, s.camera.pose);
-  return {bittrue::make_frame_setup(s.precision, s, in),
-          bittrue::make_voxel_memory(s.precision, sv.volume, sv.gradients)};
-}
+using segments::Frame;
+using segments::prepare;
+using segments::small_scene;
+constexpr const char* kOrigin = "pre-integration engines";
 
 // An n^3 volume of 8-bit values v(x) along x, with its gradients.
 template <class F>
@@ -273,20 +269,6 @@ TEST(Preintegrated, GuardReportsSegmentOpacitiesThatVanish) {
   EXPECT_FALSE(has(hazards("precise", "preintegrated"), "preint-alpha-vanishes"));
 }
 
-// A shaded phantom, small enough for every engine in a unit test.
-ref::Scene small_scene(const ref::Overrides& overrides) {
-  return ref::parse_scene(
-      "[volume]\nsource = \"phantom:shepp-logan?size=24&aa=2\"\n"
-      "[classification]\npoints = [ {value = 0, alpha = 0.0}, "
-      "{value = 30, color = [0.9, 0.6, 0.4], alpha = 0.05}, "
-      "{value = 200, color = [0.5, 0.8, 1.0], alpha = 0.7} ]\n"
-      "[camera]\neye = [18.7, -28.8, 21.1]\ncenter = [11.5, 11.5, 11.5]\nfov_deg = 45\n"
-      "[render]\nwidth = 20\nheight = 20\noversampling = 1.5\n"
-      "[[lights]]\ntype = \"directional\"\ndirection = [1, -1, 1]\nintensity = 0.6\n"
-      "[[lights]]\ntype = \"headlight\"\nintensity = 0.6\n",
-      "pre-integration engines", ".", overrides);
-}
-
 // hls == bit-true == the cycle model with pre-integration in every mode and
 // with jitter and the vizard2 widths; the cycle model takes the same samples
 // as post-classification, in at most one clock per ray more (the deeper stage).
@@ -302,16 +284,11 @@ TEST(Preintegrated, EnginesBitExactAndCyclesOfTheDeeperStage) {
       on.push_back(extra);
       off.push_back(extra);
     }
-    const ref::Scene s = small_scene(on), s0 = small_scene(off);
+    const ref::Scene s = small_scene(on, kOrigin), s0 = small_scene(off, kOrigin);
     static const cosim::SceneVolume sv = cosim::load_scene_volume(s);
     const Frame f = prepare(s, sv), f0 = prepare(s0, sv);
-    ref::FrameStats hs, bs;
-    const ref::QuantImage h = cosim::hls_render_image(f.setup, f.memory, 2, &hs);
-    const ref::QuantImage b = bittrue::bt_render_image(f.setup, f.memory, 2, &bs);
-    const rtl::RtlResult r = rtl::rtl_render(f.setup, f.memory);
-    EXPECT_EQ(h.pixels, b.pixels);
-    EXPECT_EQ(h.pixels, r.image.pixels);
-    EXPECT_EQ(hs, bs);
+    const segments::EngineRun run = segments::expect_engines_agree(f);
+    const ref::QuantImage& h = run.hls;
     const ref::QuantImage h0 = cosim::hls_render_image(f0.setup, f0.memory, 2);
     if (s.render.mode == ref::RenderMode::Mip) {
       EXPECT_EQ(h.pixels, h0.pixels) << "MIP is unaffected";
@@ -322,7 +299,8 @@ TEST(Preintegrated, EnginesBitExactAndCyclesOfTheDeeperStage) {
     // images differ): the same samples, the deeper stage's clocks at most.
     on.push_back("render.ert_threshold=1.0");
     off.push_back("render.ert_threshold=1.0");
-    const Frame g = prepare(small_scene(on), sv), g0 = prepare(small_scene(off), sv);
+    const Frame g = prepare(small_scene(on, kOrigin), sv);
+    const Frame g0 = prepare(small_scene(off, kOrigin), sv);
     const rtl::RtlResult c = rtl::rtl_render(g.setup, g.memory);
     const rtl::RtlResult c0 = rtl::rtl_render(g0.setup, g0.memory);
     EXPECT_EQ(c.image.pixels, cosim::hls_render_image(g.setup, g.memory, 2).pixels);
