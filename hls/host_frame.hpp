@@ -112,6 +112,9 @@ std::unique_ptr<FrameState<P, U>> load_frame_state(const bittrue::FrameSetup& fs
     throw Error(engine + ": the design has no segment-opacity unit, the frame asks for "
                 "render.partial_segments = true (it was elaborated for another scene)");
   }
+  if (fs.preint_table && (fs.leap || fs.segments))
+    throw Error(engine + ": a pre-integrated frame cannot leap or weight partial segments "
+                "(render.classification = \"preintegrated\", docs/pipeline.md §4a)");
   if constexpr (U::preintegration) {
     f->preint.enabled = false;
     if (fs.preint_table && !load_preint_table<P>(f->preint, *fs.preint_table))

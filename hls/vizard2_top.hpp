@@ -265,9 +265,6 @@ VOXCAST_HLS_HOST_INLINE ClassEntry<P> weigh_entry(const Tables&, const W&,
   return e;
 }
 
-// §4 or §4a: the sample's entry from the classification table, or, in a
-// pre-integrated frame, the entry of the segment from the previous sample
-// (`front`) to this one from the pre-integration table.
 // The sample a classified entry is shaded with: the sample itself, or in a
 // pre-integrated frame the segment's front sample (§4a: where a ray entering
 // a surface gathers most of the segment's opacity), its gradient.
@@ -283,7 +280,10 @@ VOXCAST_HLS_HOST_INLINE Sample<P> lit_sample(const Preint&, const Sample<P>&, co
   return s;
 }
 
-// `first`: the sample is its ray's first, which ends no segment.
+// §4 or §4a: the sample's entry from the classification table, or, in a
+// pre-integrated frame, the entry of the segment from the previous sample
+// (`front`) to this one from the pre-integration table; `first`: the sample is
+// its ray's first, which ends no segment.
 template <class P>
 VOXCAST_HLS_HOST_INLINE ClassEntry<P> classify_entry(
     const ClassificationTable<P>& table, const PreintegrationTable<P>& preint, bool first,
