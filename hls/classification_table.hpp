@@ -89,17 +89,27 @@ struct ClassificationTable {
   ClassEntry<P> entry[ClassificationParams<P>::entries];
 };
 
+// §4.1 for a table of Scaled's integer bits: the value's bits read as Scaled
+// (the binary point moved: wiring, not arithmetic), one rounding and one clamp
+// into Round, the integer as Addr. The classification and the pre-integration
+// (§4a.1) tables share it at their own resolutions.
+template <class Scaled, class Round, class Addr, class Value>
+VOXCAST_HLS_HOST_INLINE Addr table_address(const Value& value) {
+  VOXCAST_HLS_PRAGMA(HLS INLINE)
+  Scaled scaled;
+  write_bits(scaled, read_bits(value));
+  const Round rounded = scaled;  // one rounding, one clamp
+  return int_cast<Addr>(rounded);  // integer-valued: exact
+}
+
 // §4.1: addr = SAT(Q_RND(value · 2^(tf_addr_bits - vb), 0), 0, 2^tf_addr_bits - 1).
 template <class P>
 VOXCAST_HLS_HOST_INLINE typename ClassificationParams<P>::addr_t class_address(
     const typename ClassificationParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = ClassificationParams<P>;
-  // Re-reading the bits with the binary point moved is wiring, not arithmetic.
-  typename Params::scaled_value_t scaled;
-  write_bits(scaled, read_bits(value));
-  const typename Params::addr_round_t rounded = scaled;  // one rounding, one clamp
-  return int_cast<typename Params::addr_t>(rounded);              // integer-valued: exact
+  return table_address<typename Params::scaled_value_t, typename Params::addr_round_t,
+                       typename Params::addr_t>(value);
 }
 
 // §4: one table read per sample.

@@ -58,9 +58,10 @@ struct PreintegrationParams {
 
 // Pipeline depth (clocks): §4a.1 the two addresses (one rounding and clamp each,
 // in parallel) 1; §4a.2 the read 2: a 2^(2b)-entry table is a cascade of block
-// RAMs (16 BRAM36 or 4 URAM for b = 8, 56-bit entries), whose output
-// multiplexer takes a register stage of its own at the card's clock (UG573,
-// "Cascadable Block RAM"). One clock more than the classification table's.
+// RAMs (docs/pipeline.md §4a.5: 79-158 RAMB18 for 201^2 entries; 16 UltraRAM at
+// b = 8), whose output multiplexer takes a register stage of its own at the
+// card's clock (UG573, "Cascadable Block RAM"). One clock more than the
+// classification table's.
 constexpr int preintegration_depth = 3;
 
 // The table: one ClassEntry per (front, back) address pair, front-major; read
@@ -79,10 +80,8 @@ VOXCAST_HLS_HOST_INLINE typename PreintegrationParams<P>::addr_t preint_address(
     const typename PreintegrationParams<P>::value_t& value) {
   VOXCAST_HLS_PRAGMA(HLS INLINE)
   using Params = PreintegrationParams<P>;
-  typename Params::scaled_value_t scaled;  // the same bits, the binary point moved: wiring
-  write_bits(scaled, read_bits(value));
-  const typename Params::addr_round_t rounded = scaled;  // one rounding, one clamp
-  return int_cast<typename Params::addr_t>(rounded);
+  return table_address<typename Params::scaled_value_t, typename Params::addr_round_t,
+                       typename Params::addr_t>(value);
 }
 
 // §4a: the entry of a sample that ends no segment (a ray's first): transparent.

@@ -546,10 +546,8 @@ void preintegration_hazards(const ref::Scene& scene, const ref::Volume& volume,
   const double step = 1.0 / scene.render.oversampling;
   // The table over the value field's units, as the frame set-up builds it
   // (bittrue::make_frame_setup): the same cached table.
-  const double scale = std::ldexp(1.0, bittrue::value_shift(p, volume));
-  std::vector<ref::TfPoint> points = ref::stored_transfer_function(scene, volume).points();
-  for (ref::TfPoint& pt : points) pt.value *= scale;
-  const ref::TransferFunction tf(points, scene.tf_interpolation, scene.material);
+  const ref::TransferFunction tf = bittrue::field_transfer_function(
+      p, ref::stored_transfer_function(scene, volume), volume);
   const auto table = bittrue::make_preint_table(p, tf, step);
   const int side = 1 << p.preint_addr_bits;
   const std::uint32_t full = (std::uint32_t{1} << ab) - 1;

@@ -119,6 +119,12 @@ inline int value_shift(const PrecisionProfile& p, const ref::Volume& v) {
   return p.value_bits > v.bits ? p.value_bits - v.bits : 0;
 }
 
+// The transfer function in the value field's units (§3.4: stored values
+// shifted by value_shift), the units the tables are addressed in.
+ref::TransferFunction field_transfer_function(const PrecisionProfile& p,
+                                              const ref::TransferFunction& tf_stored,
+                                              const ref::Volume& v);
+
 // Raw integer of Q_RND(x, frac_bits) (ties towards +inf), for register loads.
 Raw quantize_rnd(double x, int frac_bits);
 

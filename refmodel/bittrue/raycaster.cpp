@@ -15,10 +15,8 @@ FrameSetup make_frame_setup(const PrecisionProfile& profile, const ref::Scene& s
   if (fs.regs.perspective) fs.rsqrt_seed = make_rsqrt_seed(profile);
   // The table is addressed by the value field, where the data sit shifted to
   // its full range (§3.4): express the transfer function in field units.
-  const double scale = std::ldexp(1.0, value_shift(profile, *inputs.volume.volume));
-  std::vector<ref::TfPoint> points = inputs.tf.points();
-  for (ref::TfPoint& pt : points) pt.value *= scale;
-  const ref::TransferFunction tf_field(points, inputs.tf.interpolation(), inputs.tf.material());
+  const ref::TransferFunction tf_field =
+      field_transfer_function(profile, inputs.tf, *inputs.volume.volume);
   fs.class_table = make_class_table(profile, tf_field, inputs.settings.step);
   // A MIP or unshaded scene instantiates no shading unit: no reflectance maps.
   if (scene.render.mode == ref::RenderMode::Shaded)

@@ -24,6 +24,15 @@ std::uint32_t raw_u(double x, int F) { return static_cast<std::uint32_t>(to_raw(
 
 }  // namespace
 
+ref::TransferFunction field_transfer_function(const PrecisionProfile& p,
+                                              const ref::TransferFunction& tf_stored,
+                                              const ref::Volume& v) {
+  const double scale = std::ldexp(1.0, value_shift(p, v));
+  std::vector<ref::TfPoint> points = tf_stored.points();
+  for (ref::TfPoint& pt : points) pt.value *= scale;
+  return ref::TransferFunction(points, tf_stored.interpolation(), tf_stored.material());
+}
+
 std::vector<ClassEntry> make_class_table(const PrecisionProfile& profile,
                                          const ref::TransferFunction& tf_stored, double step) {
   const int n = 1 << profile.tf_addr_bits;
@@ -55,17 +64,7 @@ struct PreintKey {
   ref::TfInterpolation interpolation;
   ref::Material material;
   double step;
-  bool operator==(const PreintKey& o) const {
-    if (!(profile == o.profile) || interpolation != o.interpolation || step != o.step ||
-        material.ka != o.material.ka || material.kd != o.material.kd ||
-        material.ks != o.material.ks || points.size() != o.points.size())
-      return false;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (points[i].value != o.points[i].value || points[i].color != o.points[i].color ||
-          points[i].alpha != o.points[i].alpha)
-        return false;
-    return true;
-  }
+  bool operator==(const PreintKey&) const = default;
 };
 
 std::vector<ClassEntry> build_preint_table(const PrecisionProfile& profile,

@@ -12,10 +12,19 @@ namespace voxcast::bittrue {
 
 // --- §4 Classification -----------------------------------------------------------------
 
-int bt_class_address(const PrecisionProfile& p, double value) {
-  const double scaled = scale2(value, p.tf_addr_bits - p.value_bits);  // exact
-  const double last = std::ldexp(1.0, p.tf_addr_bits) - 1.0;
+namespace {
+
+// §4.1 at `bits` address bits: SAT(Q_RND(value · 2^(bits - vb), 0), 0, 2^bits - 1).
+int table_address(const PrecisionProfile& p, double value, int bits) {
+  const double scaled = scale2(value, bits - p.value_bits);  // exact
+  const double last = std::ldexp(1.0, bits) - 1.0;
   return static_cast<int>(sat(q_rnd(scaled, 0), 0.0, last));
+}
+
+}  // namespace
+
+int bt_class_address(const PrecisionProfile& p, double value) {
+  return table_address(p, value, p.tf_addr_bits);
 }
 
 const ClassEntry& bt_classify(const FrameSetup& fs, double value) {
@@ -23,9 +32,7 @@ const ClassEntry& bt_classify(const FrameSetup& fs, double value) {
 }
 
 int bt_preint_address(const PrecisionProfile& p, double value) {
-  const double scaled = scale2(value, p.preint_addr_bits - p.value_bits);  // exact
-  const double last = std::ldexp(1.0, p.preint_addr_bits) - 1.0;
-  return static_cast<int>(sat(q_rnd(scaled, 0), 0.0, last));
+  return table_address(p, value, p.preint_addr_bits);
 }
 
 const ClassEntry& bt_classify_segment(const FrameSetup& fs, double front, double back) {

@@ -29,6 +29,7 @@ struct TfPoint {
   double value = 0.0;               // physical unit
   glm::dvec3 color{1.0, 1.0, 1.0};  // each in [0, 1]
   double alpha = 0.0;               // [0, 1], per unit distance
+  friend bool operator==(const TfPoint&, const TfPoint&) = default;
 };
 
 struct Material {
@@ -36,6 +37,7 @@ struct Material {
   double kd = 0.7;          // diffuse
   double ks = 0.2;          // specular
   double shininess = 20.0;  // Phong exponent
+  friend bool operator==(const Material&, const Material&) = default;
 };
 
 struct Classified {

@@ -7,11 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 
 #include "cosim/engines/engines.hpp"
 #include "refmodel/bittrue/raycaster.hpp"
 #include "refmodel/render/raycaster.hpp"
+#include "refmodel/volume/gradients.hpp"
 #include "refmodel/scene/scene_toml.hpp"
 #include "rtl_model/engine.hpp"
 
@@ -26,6 +28,23 @@ inline Frame prepare(const ref::Scene& s, const cosim::SceneVolume& sv) {
   const ref::RenderInputs in = ref::make_render_inputs(s, sv.volume, sv.gradients, s.camera.pose);
   return {bittrue::make_frame_setup(s.precision, s, in),
           bittrue::make_voxel_memory(s.precision, sv.volume, sv.gradients)};
+}
+
+// An n^3 volume of 8-bit values v(x) along x, with its gradients.
+template <class F>
+inline cosim::SceneVolume volume_along_x(int n, F v) {
+  cosim::SceneVolume sv;
+  sv.volume.dims = {n, n, n};
+  sv.volume.bits = 8;
+  sv.volume.source = "test volume along x";
+  sv.volume.data.assign(sv.volume.voxel_count(), 0);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        sv.volume.data[static_cast<std::size_t>(x + n * (y + n * z))] =
+            static_cast<std::uint16_t>(v(x));
+  sv.gradients = ref::compute_gradients(sv.volume, ref::GradientOperator::Central);
+  return sv;
 }
 
 // A 24^3 Shepp-Logan phantom, shaded under two lights, 20x20 at 1.5 samples

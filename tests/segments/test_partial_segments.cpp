@@ -42,13 +42,7 @@ constexpr const char* kOrigin = "partial segments engines";
 
 // A constant volume of edge n (stored value 100) with its gradients.
 cosim::SceneVolume constant_volume(int n) {
-  cosim::SceneVolume sv;
-  sv.volume.dims = {n, n, n};
-  sv.volume.bits = 8;
-  sv.volume.source = "constant 100";
-  sv.volume.data.assign(sv.volume.voxel_count(), 100);
-  sv.gradients = ref::compute_gradients(sv.volume, ref::GradientOperator::Central);
-  return sv;
+  return segments::volume_along_x(n, [](int) { return 100; });
 }
 
 // The scene: a binary transfer function of alpha 0.1 above 50 (the

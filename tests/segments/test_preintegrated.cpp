@@ -45,24 +45,8 @@ namespace VOXCAST_UNITY_ID {
 using segments::Frame;
 using segments::prepare;
 using segments::small_scene;
+using segments::volume_along_x;
 constexpr const char* kOrigin = "pre-integration engines";
-
-// An n^3 volume of 8-bit values v(x) along x, with its gradients.
-template <class F>
-cosim::SceneVolume volume_along_x(int n, F v) {
-  cosim::SceneVolume sv;
-  sv.volume.dims = {n, n, n};
-  sv.volume.bits = 8;
-  sv.volume.source = "test volume along x";
-  sv.volume.data.assign(sv.volume.voxel_count(), 0);
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x)
-        sv.volume.data[static_cast<std::size_t>(x + n * (y + n * z))] =
-            static_cast<std::uint16_t>(v(x));
-  sv.gradients = ref::compute_gradients(sv.volume, ref::GradientOperator::Central);
-  return sv;
-}
 
 // A parallel camera looking along +x through an n^3 volume, unshaded, ERT off,
 // whole steps (no partial segments: the pre-integrated scene has none either).
