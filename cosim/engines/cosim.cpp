@@ -78,16 +78,6 @@ std::string write_reproducer(const std::string& dir, const ref::Scene& scene, co
   return path;
 }
 
-nlohmann::json accuracy_json(const Accuracy& a) {
-  return {{"psnr_db", std::isfinite(a.psnr_db) ? nlohmann::json(a.psnr_db) : nlohmann::json("inf")},
-          {"max_abs_err_lsb", a.max_abs_err_lsb},
-          {"mean_abs_err_lsb", a.mean_abs_err_lsb},
-          {"rms_err_lsb", a.rms_err_lsb},
-          {"pct_within_1lsb", a.pct_within_1lsb},
-          {"ssim", std::isnan(a.ssim) ? nlohmann::json(nullptr) : nlohmann::json(a.ssim)},
-          {"worst_pixel", {a.worst_x, a.worst_y}}};
-}
-
 }  // namespace
 
 CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,

@@ -11,19 +11,12 @@
 #include "cosim/hardware/report.hpp"
 #include "cosim/reports/html.hpp"
 #include "cosim/reports/junit.hpp"
+#include "cosim/reports/text.hpp"
 
 namespace voxcast::cosim {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string num(double v, int decimals = 2) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  if (std::isnan(v)) return "n/a";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
 
 std::string verdicts(const ref::Scene& scene, const CosimResult& r) {
   std::string out = "<h2>Verdict</h2>\n<table>\n<tr><th>engines</th><th>result</th><th>detail</th></tr>\n";
@@ -49,15 +42,19 @@ std::string images(const ref::Scene& scene, const CosimResult& r, const std::str
       {"bittrue.png", "bit-true reference"},
       {"hls.png", "hls kernels"},
       {"diff.png", "|hls - float| heat map (black 0, white 4 LSB)"},
-      {"truth.png", "truth (float at " + num(r.truth.oversampling, 0) + "x oversampling)"}};
+      {"truth.png", "truth (float at " + fixed_text(r.truth.oversampling, 0) + "x oversampling)"}};
   for (const auto& [file, caption] : shown)
     if (fs::exists(fs::path(out_dir) / file)) out += html::figure(file, caption, w, h, scale);
   return out;
 }
 
 std::vector<std::string> accuracy_row(const std::string& what, const Accuracy& a) {
-  return {what, num(a.psnr_db), num(a.ssim, 4), num(a.max_abs_err_lsb),
-          num(a.rms_err_lsb, 3), num(a.pct_within_1lsb)};
+  return {what,
+          fixed_text(a.psnr_db),
+          fixed_text(a.ssim, 4),
+          fixed_text(a.max_abs_err_lsb),
+          fixed_text(a.rms_err_lsb, 3),
+          fixed_text(a.pct_within_1lsb)};
 }
 
 std::string accuracy(const ref::Scene& scene, const CosimResult& r) {
@@ -102,7 +99,7 @@ std::string divergence(const CosimResult& r) {
   };
   const auto vec = [](const auto& v) {
     std::string s;
-    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + num(v[i], 6);
+    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fixed_text(v[i], 6);
     return s;
   };
   add("ray setup: p0", vec(m.hls_trace.p0), vec(m.bt_trace.p0));
@@ -114,13 +111,14 @@ std::string divergence(const CosimResult& r) {
     const bittrue::SampleTrace& b = m.bt_trace.trace[k];
     const std::string s = "sample " + std::to_string(k) + ": ";
     add(s + "position (stepping)", vec(a.position), vec(b.position));
-    add(s + "value (interpolation)", num(a.value, 6), num(b.value, 6));
+    add(s + "value (interpolation)", fixed_text(a.value, 6), fixed_text(b.value, 6));
     add(s + "gradient (interpolation)", vec(a.gradient), vec(b.gradient));
     add(s + "class address (classification)", std::to_string(a.class_address),
         std::to_string(b.class_address));
-    add(s + "alpha (classification)", num(a.alpha, 6), num(b.alpha, 6));
-    add(s + "diffuse, specular (reflectance map)", num(a.diffuse, 6) + ", " + num(a.specular, 6),
-        num(b.diffuse, 6) + ", " + num(b.specular, 6));
+    add(s + "alpha (classification)", fixed_text(a.alpha, 6), fixed_text(b.alpha, 6));
+    add(s + "diffuse, specular (reflectance map)",
+        fixed_text(a.diffuse, 6) + ", " + fixed_text(a.specular, 6),
+        fixed_text(b.diffuse, 6) + ", " + fixed_text(b.specular, 6));
     add(s + "shaded (shader)", vec(a.shaded), vec(b.shaded));
     add(s + "accumulator (compositor)", vec(a.accumulator), vec(b.accumulator));
   }
@@ -137,11 +135,12 @@ std::string cycles(const std::string& out_dir) {
     return "";
   }
   if (!j.contains("cycles")) return "<h2>Cycle model</h2>\n<p>Not run.</p>\n";
-  std::string out = "<h2>Cycle model</h2>\n" +
-                    html::table({"cycles", "frames/s", "ns/sample", "row-hit rate"},
-                                {{std::to_string(j["cycles"].get<std::uint64_t>()),
-                                  num(j.value("fps", 0.0)), num(j.value("ns_per_sample", 0.0), 3),
-                                  num(100.0 * j.value("row_hit_rate", 0.0), 1) + " %"}});
+  std::string out =
+      "<h2>Cycle model</h2>\n" +
+      html::table({"cycles", "frames/s", "ns/sample", "row-hit rate"},
+                  {{std::to_string(j["cycles"].get<std::uint64_t>()),
+                    fixed_text(j.value("fps", 0.0)), fixed_text(j.value("ns_per_sample", 0.0), 3),
+                    fixed_text(100.0 * j.value("row_hit_rate", 0.0), 1) + " %"}});
   if (j.contains("stalls")) {
     std::vector<std::string> labels;
     std::vector<double> values;
@@ -159,10 +158,11 @@ std::string resources(const ref::Scene& scene, const std::string& part) {
   const ResourceReport rep = estimate_resources(scene, find_part(part));
   std::vector<std::vector<std::string>> rows;
   for (const UnitResources& u : rep.units)
-    rows.push_back({u.unit.name, num(u.res.luts, 0), num(u.res.ffs, 0), num(u.res.dsps, 0),
-                    num(u.res.brams, 0), std::to_string(u.unit.latency)});
-  rows.push_back({"total", num(rep.total.luts, 0), num(rep.total.ffs, 0), num(rep.total.dsps, 0),
-                  num(rep.total.brams, 0), ""});
+    rows.push_back({u.unit.name, fixed_text(u.res.luts, 0), fixed_text(u.res.ffs, 0),
+                    fixed_text(u.res.dsps, 0), fixed_text(u.res.brams, 0),
+                    std::to_string(u.unit.latency)});
+  rows.push_back({"total", fixed_text(rep.total.luts, 0), fixed_text(rep.total.ffs, 0),
+                  fixed_text(rep.total.dsps, 0), fixed_text(rep.total.brams, 0), ""});
   rows.push_back({rep.part.name + " capacity", std::to_string(rep.part.luts),
                   std::to_string(rep.part.ffs), std::to_string(rep.part.dsps),
                   std::to_string(rep.part.brams), ""});
@@ -212,7 +212,7 @@ std::string sweep_page(const sweep::Table& t) {
   for (const sweep::Row& r : t.rows) {
     std::vector<std::string> cells;
     for (const sweep::Cell& c : r.cells)
-      cells.push_back(c.kind == sweep::Cell::Kind::Number ? num(c.number, 3)
+      cells.push_back(c.kind == sweep::Cell::Kind::Number ? fixed_text(c.number, 3)
                       : c.kind == sweep::Cell::Kind::Text ? c.text
                                                           : "n/a");
     rows.push_back(cells);

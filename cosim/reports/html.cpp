@@ -7,15 +7,10 @@
 #include <sstream>
 
 #include "cosim/reports/junit.hpp"
+#include "cosim/reports/text.hpp"
 
 namespace voxcast::cosim::html {
 namespace {
-
-std::string num(double v, int decimals = 2) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
 
 // Plot-area geometry of the charts, in SVG user units.
 constexpr double kWidth = 640, kHeight = 400, kLeft = 70, kRight = 20, kTop = 30, kBottom = 50;
@@ -33,12 +28,13 @@ Axis padded(double lo, double hi) {
 }
 
 std::string svg_open(const std::string& title) {
-  return "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + num(kWidth, 0) +
-         " " + num(kHeight, 0) + "\" width=\"" + num(kWidth, 0) + "\" height=\"" +
-         num(kHeight, 0) + "\" role=\"img\" aria-label=\"" + escape(title) + "\">" +
-         "<rect x=\"" + num(kLeft) + "\" y=\"" + num(kTop) + "\" width=\"" +
-         num(kWidth - kLeft - kRight) + "\" height=\"" + num(kHeight - kTop - kBottom) +
-         "\" fill=\"#fafafa\" stroke=\"#999\"/>";
+  return "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " +
+         fixed_text(kWidth, 0) + " " + fixed_text(kHeight, 0) + "\" width=\"" +
+         fixed_text(kWidth, 0) + "\" height=\"" + fixed_text(kHeight, 0) +
+         "\" role=\"img\" aria-label=\"" + escape(title) + "\">" + "<rect x=\"" +
+         fixed_text(kLeft) + "\" y=\"" + fixed_text(kTop) + "\" width=\"" +
+         fixed_text(kWidth - kLeft - kRight) + "\" height=\"" +
+         fixed_text(kHeight - kTop - kBottom) + "\" fill=\"#fafafa\" stroke=\"#999\"/>";
 }
 
 std::string svg_close(const std::string& title) {
@@ -134,16 +130,20 @@ std::string bar_chart(const std::string& title, const std::vector<std::string>& 
   for (std::size_t i = 0; i < values.size(); ++i) {
     const double h = values[i] / top * (kHeight - kTop - kBottom);
     const double x = kLeft + slot * static_cast<double>(i) + slot * 0.15;
-    out += "<rect x=\"" + num(x) + "\" y=\"" + num(kHeight - kBottom - h) + "\" width=\"" +
-           num(slot * 0.7) + "\" height=\"" + num(h) + "\" fill=\"#4a7ab5\"><title>" +
-           escape(labels[i] + ": " + num(values[i], 0) + " " + value_unit) + "</title></rect>";
-    out += "<text x=\"" + num(x + slot * 0.35) + "\" y=\"" + num(kHeight - kBottom + 16) +
-           "\" font-size=\"11\" text-anchor=\"middle\">" + escape(labels[i]) + "</text>";
-    out += "<text x=\"" + num(x + slot * 0.35) + "\" y=\"" + num(kHeight - kBottom - h - 4) +
-           "\" font-size=\"11\" text-anchor=\"middle\">" + num(values[i], 0) + "</text>";
+    out += "<rect x=\"" + fixed_text(x) + "\" y=\"" + fixed_text(kHeight - kBottom - h) +
+           "\" width=\"" + fixed_text(slot * 0.7) + "\" height=\"" + fixed_text(h) +
+           "\" fill=\"#4a7ab5\"><title>" +
+           escape(labels[i] + ": " + fixed_text(values[i], 0) + " " + value_unit) +
+           "</title></rect>";
+    out += "<text x=\"" + fixed_text(x + slot * 0.35) + "\" y=\"" +
+           fixed_text(kHeight - kBottom + 16) + "\" font-size=\"11\" text-anchor=\"middle\">" +
+           escape(labels[i]) + "</text>";
+    out += "<text x=\"" + fixed_text(x + slot * 0.35) + "\" y=\"" +
+           fixed_text(kHeight - kBottom - h - 4) + "\" font-size=\"11\" text-anchor=\"middle\">" +
+           fixed_text(values[i], 0) + "</text>";
   }
-  out += "<text x=\"" + num(kLeft) + "\" y=\"" + num(kTop - 10) + "\" font-size=\"12\">" +
-         escape(value_unit) + "</text>";
+  out += "<text x=\"" + fixed_text(kLeft) + "\" y=\"" + fixed_text(kTop - 10) +
+         "\" font-size=\"12\">" + escape(value_unit) + "</text>";
   return out + svg_close(title);
 }
 
@@ -160,16 +160,17 @@ std::string scatter(const std::string& title, const std::string& x_label,
   const auto py = [&](double v) { return ay.at(v, kHeight - kBottom, kTop); };
   // Ticks: the extremes of the data on each axis.
   for (double v : {x0, x1})
-    out += "<text x=\"" + num(px(v)) + "\" y=\"" + num(kHeight - kBottom + 16) +
-           "\" font-size=\"11\" text-anchor=\"middle\">" + num(v, 3) + "</text>";
+    out += "<text x=\"" + fixed_text(px(v)) + "\" y=\"" + fixed_text(kHeight - kBottom + 16) +
+           "\" font-size=\"11\" text-anchor=\"middle\">" + fixed_text(v, 3) + "</text>";
   for (double v : {y0, y1})
-    out += "<text x=\"" + num(kLeft - 6) + "\" y=\"" + num(py(v) + 4) +
-           "\" font-size=\"11\" text-anchor=\"end\">" + num(v, 2) + "</text>";
-  out += "<text x=\"" + num((kLeft + kWidth - kRight) / 2) + "\" y=\"" + num(kHeight - 12) +
-         "\" font-size=\"12\" text-anchor=\"middle\">" + escape(x_label) + "</text>";
-  out += "<text x=\"14\" y=\"" + num((kTop + kHeight - kBottom) / 2) +
+    out += "<text x=\"" + fixed_text(kLeft - 6) + "\" y=\"" + fixed_text(py(v) + 4) +
+           "\" font-size=\"11\" text-anchor=\"end\">" + fixed_text(v, 2) + "</text>";
+  out += "<text x=\"" + fixed_text((kLeft + kWidth - kRight) / 2) + "\" y=\"" +
+         fixed_text(kHeight - 12) + "\" font-size=\"12\" text-anchor=\"middle\">" +
+         escape(x_label) + "</text>";
+  out += "<text x=\"14\" y=\"" + fixed_text((kTop + kHeight - kBottom) / 2) +
          "\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 14 " +
-         num((kTop + kHeight - kBottom) / 2) + ")\">" + escape(y_label) + "</text>";
+         fixed_text((kTop + kHeight - kBottom) / 2) + ")\">" + escape(y_label) + "</text>";
   // The front: its points joined in x order.
   std::vector<ScatterPoint> front;
   for (const ScatterPoint& p : points)
@@ -178,16 +179,17 @@ std::string scatter(const std::string& title, const std::string& x_label,
             [](const ScatterPoint& a, const ScatterPoint& b) { return a.x < b.x; });
   if (front.size() > 1) {
     out += "<polyline fill=\"none\" stroke=\"#c33\" stroke-width=\"2\" points=\"";
-    for (const ScatterPoint& p : front) out += num(px(p.x)) + "," + num(py(p.y)) + " ";
+    for (const ScatterPoint& p : front)
+      out += fixed_text(px(p.x)) + "," + fixed_text(py(p.y)) + " ";
     out += "\"/>";
   }
   for (const ScatterPoint& p : points) {
-    out += "<circle class=\"point\" cx=\"" + num(px(p.x)) + "\" cy=\"" + num(py(p.y)) +
-           "\" r=\"4\" fill=\"#4a7ab5\"" +
+    out += "<circle class=\"point\" cx=\"" + fixed_text(px(p.x)) + "\" cy=\"" +
+           fixed_text(py(p.y)) + "\" r=\"4\" fill=\"#4a7ab5\"" +
            (p.front ? " stroke=\"#c33\" stroke-width=\"3\"" : "") + "><title>" +
            escape(p.label + (p.front ? " (on the front)" : "")) + "</title></circle>";
-    out += "<text class=\"label\" x=\"" + num(px(p.x) + 6) + "\" y=\"" + num(py(p.y) - 6) +
-           "\" font-size=\"10\">" + escape(p.label) + "</text>";
+    out += "<text class=\"label\" x=\"" + fixed_text(px(p.x) + 6) + "\" y=\"" +
+           fixed_text(py(p.y) - 6) + "\" font-size=\"10\">" + escape(p.label) + "</text>";
   }
   return out + svg_close(title + " (ringed and joined: the Pareto front)");
 }

@@ -6,6 +6,8 @@
 #include <limits>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "refmodel/error.hpp"
 
 namespace voxcast::cosim {
@@ -182,6 +184,16 @@ ref::Image error_heat_map(const ref::QuantImage& test, const ref::Image& truth,
                                std::clamp(3.0 * t - 2.0, 0.0, 1.0), 1.0);
   }
   return map;
+}
+
+nlohmann::json accuracy_json(const Accuracy& a) {
+  return {{"psnr_db", std::isfinite(a.psnr_db) ? nlohmann::json(a.psnr_db) : nlohmann::json("inf")},
+          {"max_abs_err_lsb", a.max_abs_err_lsb},
+          {"mean_abs_err_lsb", a.mean_abs_err_lsb},
+          {"rms_err_lsb", a.rms_err_lsb},
+          {"pct_within_1lsb", a.pct_within_1lsb},
+          {"ssim", std::isnan(a.ssim) ? nlohmann::json(nullptr) : nlohmann::json(a.ssim)},
+          {"worst_pixel", {a.worst_x, a.worst_y}}};
 }
 
 }  // namespace voxcast::cosim

@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "refmodel/render/image.hpp"
 #include "refmodel/render/quant_image.hpp"
 
@@ -26,6 +28,10 @@ struct Accuracy {
 };
 
 Accuracy measure_accuracy(const ref::QuantImage& test, const ref::Image& truth);
+
+// The figures as the reports' JSON gives them: psnr_db ("inf" when exact),
+// the LSB errors, pct_within_1lsb, ssim (null when undefined) and worst_pixel.
+nlohmann::json accuracy_json(const Accuracy& a);
 
 // How many pixels have their worst channel's error (as measure_accuracy
 // measures it, in LSBs) in each bin: exactly 0, at most 1, 2, 4, 8, 16, and

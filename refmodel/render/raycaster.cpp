@@ -176,6 +176,58 @@ double segment_weight(std::uint32_t k, std::uint32_t n, double length, double ji
   return 1.0;
 }
 
+namespace {
+// RenderSettings::study: segment `front -> back` (index-space positions pf, pb;
+// values and gradients of the two samples) composited from kStudySubsamples
+// sub-samples at the midpoints of equal parts. Returns true when early ray
+// termination stops the ray inside the segment.
+bool composite_study_segment(const RenderVolume& rv, const TransferFunction& tf,
+                             const ShadingSetup& shading, const RenderSettings& settings,
+                             const Vec3& pf, const Vec3& pb, const Sample& front,
+                             const Sample& back, Accumulator& acc) {
+  using Study = RenderSettings::SegmentStudy;
+  const bool shaded = settings.mode == RenderMode::Shaded;
+  const auto lit = [&](const Classified& c, const Vec3& gradient) {
+    return shade(c, reflectance(shading, surface_normal(gradient, rv.world_scale)));
+  };
+  for (int j = 0; j < kStudySubsamples; ++j) {
+    const double x = (j + 0.5) / kStudySubsamples;
+    const Vec3 p = pf + (pb - pf) * x;
+    const bool along_ray =
+        settings.study == Study::ExactLighting || settings.study == Study::ExactValue;
+    const Sample ray = along_ray ? interpolate(*rv.volume, *rv.gradients, p) : Sample{};
+    const double value = settings.study == Study::ExactValue
+                             ? ray.value
+                             : front.value + (back.value - front.value) * x;
+    Classified c = tf.classify(value);
+    if (c.alpha <= 0.0) continue;
+    const double alpha = opacity_correct(c.alpha, settings.step / kStudySubsamples);
+    Vec3 color = c.color;
+    if (shaded) {
+      switch (settings.study) {
+        case Study::ExactLighting:
+          color = lit(c, ray.gradient);
+          break;
+        case Study::GradientLerp:
+          color = lit(c, front.gradient + (back.gradient - front.gradient) * x);
+          break;
+        case Study::IlluminationLerp: {
+          const Vec3 cf = lit(c, front.gradient), cb = lit(c, back.gradient);
+          color = cf + (cb - cf) * x;
+          break;
+        }
+        default:
+          color = lit(c, front.gradient);
+          break;
+      }
+    }
+    composite(acc, color, alpha);
+    if (settings.ert_threshold < 1.0 && acc.alpha >= settings.ert_threshold) return true;
+  }
+  return false;
+}
+}  // namespace
+
 glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const ShadingSetup& shading,
                     const RenderSettings& settings, const Ray& ray, RayStats* stats,
                     const LeapBlocks* leap, double jitter) {
@@ -230,6 +282,14 @@ glm::dvec4 cast_ray(const RenderVolume& rv, const TransferFunction& tf, const Sh
       front = s.value;
       front_gradient = s.gradient;
       if (k == 0) continue;
+      if (settings.study != RenderSettings::SegmentStudy::None) {
+        const Sample fs{f, lit};
+        if (composite_study_segment(rv, tf, shading, settings, position(k - 1), p, fs, s, acc)) {
+          st.terminated_early = k + 1 < n;
+          break;
+        }
+        continue;
+      }
       const SegmentClass sc = tf.max_alpha(std::min(f, s.value), std::max(f, s.value)) > 0.0
                                   ? preintegrate(tf, f, s.value, settings.step)
                                   : SegmentClass{};

@@ -119,7 +119,20 @@ struct RenderSettings {
   // render.classification = "preintegrated" (docs/pipeline.md §4a): each sample
   // classifies the segment from the previous one (preintegrate(), exact).
   bool preintegrated = false;
+  // Float reference only, not a scene key: `voxcast paper engel2001`'s error
+  // budget of pre-integration (docs/accuracy.md). Each segment is composited
+  // from kStudySubsamples sub-samples instead of the exact table entry, with
+  // one of the two approximations of pre-integration removed or replaced.
+  enum class SegmentStudy {
+    None,              // the table entry (preintegrate), lit at the front sample
+    ExactLighting,     // value linear between the samples, lit with the gradient along the ray
+    ExactValue,        // the trilinear value along the ray, lit at the front sample
+    GradientLerp,      // value linear, lit with the lerp of the two samples' gradients
+    IlluminationLerp,  // value linear, the lerp of the two samples' illumination (Lum et al. 2004)
+  };
+  SegmentStudy study = SegmentStudy::None;
 };
+inline constexpr int kStudySubsamples = 16;
 
 // render.partial_segments (docs/pipeline.md §7a): the length, in steps, of the
 // segment sample k of n stands for on a ray whose clipped length is `length`
