@@ -131,11 +131,50 @@ std::shared_ptr<const EmptyBlocks> empty_blocks(const bittrue::FrameSetup& fs,
 // blocks and the counter of the samples it skipped (the caller's row).
 template <class P>
 struct EngineBanks : BitTrueBanks<P> {
+  // The profile's voxel word fits bittrue::PackedVoxelWord (fields of at most
+  // 16 bits): the engine then reads the packed words, never the bank arrays.
+  static constexpr bool kPacked =
+      InterpolationParams<P>::vb <= 16 && InterpolationParams<P>::gb <= 16;
+
   const EmptyBlocks* blocks = nullptr;  // null: no skipping
   std::uint64_t* skipped = nullptr;     // where skipped samples are counted
+  // The memory's words in the host's layout (VoxelMemory::packed: the eight
+  // banks interleaved, 8 bytes a word), the same fields in fewer cache lines
+  // per cell. Not null when kPacked (engine_packed_words).
+  const bittrue::PackedVoxelWord* packed = nullptr;
 
-  explicit EngineBanks(const bittrue::VoxelMemory& mem) : BitTrueBanks<P>(mem) {}
+  EngineBanks(const bittrue::VoxelMemory& mem, const bittrue::PackedVoxelWord* packed_words)
+      : BitTrueBanks<P>(mem), packed(packed_words) {}
+
+  VOXCAST_HLS_HOST_INLINE VoxelWordFx<P> read(
+      int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
+    // A constant condition: one of the two reads is compiled per profile.
+    if (!kPacked) return BitTrueBanks<P>::read(b, addr);
+    using I = InterpolationParams<P>;
+    const bittrue::PackedVoxelWord& w = packed[8 * addr.to_uint64() + static_cast<unsigned>(b)];
+    VoxelWordFx<P> v;
+    v.value = w.value;
+    VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
+      // As BitTrueBanks::read: the raw component, then below the binary point.
+      const int_t<I::gb> raw = w.gradient[static_cast<std::size_t>(c)];
+      fixed<I::gb + I::gfb, I::gb> t = raw;
+      t >>= I::gfb;
+      v.g[c] = t;
+    }
+    return v;
+  }
 };
+
+// The packed words an EngineBanks<P> reads: the memory's own, or, for a memory
+// made without them (by hand, or with fields wider than 16 bits at run time
+// while P's fit), a copy the caller keeps for the frame; null when P does not
+// read packed words.
+template <class P>
+std::shared_ptr<const std::vector<bittrue::PackedVoxelWord>> engine_packed_words(
+    const bittrue::VoxelMemory& mem) {
+  if (!EngineBanks<P>::kPacked) return nullptr;
+  return mem.packed ? mem.packed : bittrue::pack_banks(mem);
+}
 
 // The two's-complement value of a fixed-point number of at most 64 bits.
 template <class T>
@@ -188,7 +227,7 @@ template <class P, class Sink>
 void march_ray(const GeometryRegisters<P>& r, const EngineBanks<P>& banks, const RaySetup<P>& ray,
                Sink& sink) {
   if (!banks.blocks) {
-    hls::march_ray<P>(r, static_cast<const BitTrueBanks<P>&>(banks), ray, sink);
+    hls::march_ray<P>(r, banks, ray, sink);  // EngineBanks::read: the packed words
     return;
   }
   using G = GeometryParams<P>;

@@ -26,6 +26,7 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
                        int threads, ref::FrameStats* stats) {
   const auto frame = hls::host::load_frame_state<P>(fs, "hls engine");
   const auto empty = hls::host::empty_blocks<P>(fs, memory);  // hls/host_march.hpp
+  const auto packed = hls::host::engine_packed_words<P>(memory);
   const int w = fs.regs.width, h = fs.regs.height;
   std::vector<hls::OutputPixel<P>> fb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   std::vector<hls::RowStats> rows(static_cast<std::size_t>(h));
@@ -35,7 +36,7 @@ ref::QuantImage render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory
         // Counted on this thread's stack, then stored: rows[y] and rows[y + 1] share a
         // cache line, and the other thread is rendering row y + 1.
         hls::RowStats row;
-        hls::host::EngineBanks<P> banks(memory);
+        hls::host::EngineBanks<P> banks(memory, packed ? packed->data() : nullptr);
         banks.blocks = empty.get();
         banks.skipped = &row.samples;
         hls::render_rows<P>(*frame, banks, w, y, y + 1, fb.data(), &row);

@@ -47,10 +47,25 @@ struct VoxelWord {
   std::array<std::int32_t, 3> gradient{};  // gradient_bits signed, gradient_frac_bits
 };
 
+// A voxel word in 8 bytes, for a host that reads the banks (the hls engine,
+// hls/host_march.hpp): the same fields when value_bits and gradient_bits are
+// at most 16.
+struct PackedVoxelWord {
+  std::uint16_t value = 0;
+  std::array<std::int16_t, 3> gradient{};
+};
+static_assert(sizeof(PackedVoxelWord) == 8, "a packed voxel word is 8 bytes");
+
 // The volume in 8 interleaved banks (docs/pipeline.md §3.3).
 struct VoxelMemory {
   std::array<int, 3> dims{};
   std::array<std::vector<VoxelWord>, 8> banks;
+  // The same words in the host's layout (docs/performance.md §13): bank b's
+  // word a at [8 a + b], 8 bytes each, so the 2x2x2 voxels of one word address
+  // share a 64-byte cache line, and a cell's eight corners lie in 1-8 lines (3.4
+  // on average over the cell's parities) instead of eight, one per bank array.
+  // Null when a field is wider than 16 bits.
+  std::shared_ptr<const std::vector<PackedVoxelWord>> packed;
   // The volume's min-max blocks (docs/leaping.md) of the stored values, which the value
   // fields hold << value_shift, built with the memory (make_voxel_memory) at
   // kEngineLeapBlockLog2: what an engine reads that skips empty space on its own when the
@@ -141,6 +156,10 @@ double origin_plane_depth(const PrecisionProfile& profile, const ref::CameraFram
 // The volume's voxel words in their banks (value + quantized gradient property, §3.3-3.4).
 VoxelMemory make_voxel_memory(const PrecisionProfile& profile, const ref::Volume& volume,
                               const ref::GradientField& gradients);
+// The memory's banks as VoxelMemory::packed lays them out; the fields must fit
+// 16 bits (value_bits, gradient_bits <= 16). make_voxel_memory calls it when
+// they do; a memory whose banks are edited afterwards must call it again.
+std::shared_ptr<const std::vector<PackedVoxelWord>> pack_banks(const VoxelMemory& memory);
 
 // Classification table (§4) and reflectance maps (§5):
 // refmodel/bittrue/setup_tables.cpp. `step` is the sampling distance in world

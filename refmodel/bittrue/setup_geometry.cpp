@@ -202,6 +202,24 @@ std::vector<Raw> make_rsqrt_seed(const PrecisionProfile& p) {
   return seed;
 }
 
+std::shared_ptr<const std::vector<PackedVoxelWord>> pack_banks(const VoxelMemory& mem) {
+  const std::size_t words = mem.banks[0].size();
+  for (std::size_t b = 1; b < 8; ++b)
+    if (mem.banks[b].size() != words)
+      throw Error("voxel memory: bank " + std::to_string(b) + " holds " +
+                  std::to_string(mem.banks[b].size()) + " words, bank 0 " + std::to_string(words) +
+                  ": the banks cannot be interleaved");
+  auto packed = std::make_shared<std::vector<PackedVoxelWord>>(8 * words);
+  for (std::size_t b = 0; b < 8; ++b)
+    for (std::size_t a = 0; a < words; ++a) {
+      const VoxelWord& w = mem.banks[b][a];
+      PackedVoxelWord& q = (*packed)[8 * a + b];
+      q.value = static_cast<std::uint16_t>(w.value);
+      for (std::size_t c = 0; c < 3; ++c) q.gradient[c] = static_cast<std::int16_t>(w.gradient[c]);
+    }
+  return packed;
+}
+
 VoxelMemory make_voxel_memory(const PrecisionProfile& p, const ref::Volume& volume,
                               const ref::GradientField& gradients) {
   VoxelMemory mem;
@@ -243,6 +261,7 @@ VoxelMemory make_voxel_memory(const PrecisionProfile& p, const ref::Volume& volu
   mem.leap_blocks = std::make_shared<const ref::MinMaxBlocks>(
       ref::make_min_max_blocks(volume, kEngineLeapBlockLog2));
   mem.value_shift = shift;
+  if (p.value_bits <= 16 && p.gradient_bits <= 16) mem.packed = pack_banks(mem);
   return mem;
 }
 

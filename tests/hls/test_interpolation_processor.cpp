@@ -23,10 +23,12 @@
 #include <vector>
 
 #include "hls/geometry_processor.hpp"
+#include "hls/host_march.hpp"
 #include "hls/interpolation_processor.hpp"
 #include "refmodel/bittrue/frame_setup.hpp"
 #include "refmodel/bittrue/geometry.hpp"
 #include "refmodel/bittrue/interpolation.hpp"
+#include "refmodel/error.hpp"
 #include "refmodel/precision/preset_profiles.hpp"
 #include "refmodel/render/camera.hpp"
 #include "refmodel/render/raycaster.hpp"
@@ -527,6 +529,47 @@ TEST(InterpolationProcessor, PackedWordLayout) {
   EXPECT_EQ(u.g[0].to_double(), -1.0);
   EXPECT_EQ(u.g[1].to_double(), 5.0);
   EXPECT_EQ(u.g[2].to_double(), -128.0);
+}
+
+// The hls engine's host layout (VoxelMemory::packed, hls::host::EngineBanks):
+// every word of every bank reads the same fields as from the bank arrays, on a
+// volume of odd sizes whose gradients saturate; a profile whose fields do not
+// fit 16 bits reads the bank arrays; banks of unequal sizes cannot be packed.
+template <PrecisionProfile P>
+void check_engine_banks_read_the_banks(bool packed) {
+  SCOPED_TRACE(P.value_bits);
+  using T = ProfileTraits<P>;
+  const auto tv =
+      random_volume({7, 5, 9}, P.value_bits, (std::uint32_t{1} << P.value_bits) - 1u, 3);
+  const bittrue::VoxelMemory mem = bittrue::make_voxel_memory(P, tv->volume, tv->gradients);
+  ASSERT_EQ(hls::host::EngineBanks<T>::kPacked, packed);
+  ASSERT_EQ(mem.packed != nullptr, packed);
+  const auto words = hls::host::engine_packed_words<T>(mem);
+  const hls::host::EngineBanks<T> engine(mem, words ? words->data() : nullptr);
+  const hls::host::BitTrueBanks<T> banks(mem);
+  for (int b = 0; b < 8; ++b)
+    for (std::size_t a = 0; a < mem.banks[0].size(); ++a) {
+      typename hls::InterpolationParams<T>::word_addr_t addr = a;
+      const hls::VoxelWordFx<T> x = engine.read(b, addr), y = banks.read(b, addr);
+      ASSERT_EQ(x.value.to_uint64(), y.value.to_uint64()) << b << ", " << a;
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(x.g[c].to_double(), y.g[c].to_double()) << b << ", " << a;
+    }
+}
+
+TEST(InterpolationProcessor, EngineBanksReadTheBanksWordForWord) {
+  check_engine_banks_read_the_banks<kVizard2>(true);
+  check_engine_banks_read_the_banks<kBalanced>(true);
+  check_engine_banks_read_the_banks<kPrecise>(false);  // 20-bit gradients
+  bittrue::VoxelMemory uneven;
+  for (std::size_t b = 0; b < 8; ++b) uneven.banks[b].resize(b == 5 ? 3 : 4);
+  try {
+    bittrue::pack_banks(uneven);
+    ADD_FAILURE() << "banks of unequal sizes were packed";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "voxel memory: bank 5 holds 3 words, bank 0 4: the banks cannot be interleaved");
+  }
 }
 
 }  // namespace
