@@ -36,6 +36,7 @@
 #if VOXCAST_HLS_HOST_CODE
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "hls/interpolation_processor.hpp"
@@ -95,22 +96,15 @@ inline void chessboard_distance(EmptyBlocks& eb) {
   pass(-1);
 }
 
-// The frame's empty blocks, or null when the engine does not skip: a MIP
-// frame, a frame that leaps with the unit (render.space_leaping), or a memory
-// without min-max blocks.
+// The empty blocks of a memory for one classification table's nonzero-alpha
+// prefix (bittrue::nonzero_prefix): the space-leaping unit's emptiness test
+// (block_empty) per min-max block, then the distance transform.
 template <class P>
-std::shared_ptr<const EmptyBlocks> empty_blocks(const bittrue::FrameSetup& fs,
-                                                const bittrue::VoxelMemory& memory) {
-  // A pre-integrated frame classifies the segment in front of each sample, so a
-  // sample in an empty block may end a visible segment: every sample is taken.
-  if (fs.leap || fs.preint_table || fs.regs.mode == ref::RenderMode::Mip || !memory.leap_blocks)
-    return nullptr;
+std::shared_ptr<const EmptyBlocks> make_empty_blocks(const std::vector<std::uint32_t>& prefix,
+                                                     const bittrue::VoxelMemory& memory) {
   const ref::MinMaxBlocks& b = *memory.leap_blocks;
   using L = LeapParams<P>;
-  if (fs.class_table.size() != static_cast<std::size_t>(L::entries)) return nullptr;
-  // The unit's prefix table and emptiness test (space_leaping_unit.hpp).
   auto lr = std::make_unique<LeapRegisters<P>>();
-  const std::vector<std::uint32_t> prefix = bittrue::nonzero_prefix(fs.class_table);
   for (int i = 0; i <= L::entries; ++i) lr->prefix[i] = prefix[static_cast<std::size_t>(i)];
   auto out = std::make_shared<EmptyBlocks>();
   out->lb = b.block_log2;
@@ -123,6 +117,48 @@ std::shared_ptr<const EmptyBlocks> empty_blocks(const bittrue::FrameSetup& fs,
     out->distance[i] = block_empty<P>(*lr, e) ? EmptyBlocks::kMaxEmptyDistance : 0;
   }
   chessboard_distance(*out);
+  return out;
+}
+
+// The frame's empty blocks, or null when the engine does not skip: a MIP
+// frame, a frame that leaps with the unit (render.space_leaping), or a memory
+// without min-max blocks.
+//
+// The last result is kept (per profile, for all threads): a frame of the same
+// memory whose table has the same transparent entries reuses it, as a
+// flythrough, a bench or an interactive session renders frame after frame.
+// The key is the memory's min-max blocks (by identity: a memory freed since
+// cannot match, the key holds it weakly) and the table's nonzero-alpha prefix,
+// which is all the emptiness test reads.
+template <class P>
+std::shared_ptr<const EmptyBlocks> empty_blocks(const bittrue::FrameSetup& fs,
+                                                const bittrue::VoxelMemory& memory) {
+  // A pre-integrated frame classifies the segment in front of each sample, so a
+  // sample in an empty block may end a visible segment: every sample is taken.
+  if (fs.leap || fs.preint_table || fs.regs.mode == ref::RenderMode::Mip || !memory.leap_blocks)
+    return nullptr;
+  if (fs.class_table.size() != static_cast<std::size_t>(LeapParams<P>::entries)) return nullptr;
+  const std::vector<std::uint32_t> prefix = bittrue::nonzero_prefix(fs.class_table);
+  struct Last {
+    std::mutex m;
+    std::weak_ptr<const ref::MinMaxBlocks> blocks;
+    int value_shift = 0;
+    std::vector<std::uint32_t> prefix;
+    std::shared_ptr<const EmptyBlocks> result;
+  };
+  static Last last;
+  {
+    const std::lock_guard<std::mutex> lock(last.m);
+    if (last.result && last.blocks.lock() == memory.leap_blocks &&
+        last.value_shift == memory.value_shift && last.prefix == prefix)
+      return last.result;
+  }
+  std::shared_ptr<const EmptyBlocks> out = make_empty_blocks<P>(prefix, memory);
+  const std::lock_guard<std::mutex> lock(last.m);
+  last.blocks = memory.leap_blocks;
+  last.value_shift = memory.value_shift;
+  last.prefix = prefix;
+  last.result = out;
   return out;
 }
 

@@ -1,8 +1,10 @@
 // The hls engine's own skipping of empty blocks (hls/host_march.hpp): the
 // chessboard distance of each empty block to the nearest block that is not
 // empty, and the length of the run of samples a ray takes inside a cube of
-// blocks, each against brute force. The images it gives are the goldens'
-// (regress, and every engine test that renders a scene with empty space).
+// blocks, each against brute force; the frame's empty blocks kept between
+// frames of the same memory and transparent entries. The images it gives are
+// the goldens' (regress, and every engine test that renders a scene with
+// empty space).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -137,6 +139,48 @@ TEST(EngineSkipping, SamplesInsideIsTheFirstSampleOutsideTheCube) {
       }
     }
   }
+}
+
+// ---- The frame's empty blocks, kept between frames ------------------------------------------
+
+// empty_blocks keeps its last result: a second frame of the same memory and
+// table reuses it, one whose table makes other entries transparent or another
+// memory (even of the same volume) does not, and each result is what
+// make_empty_blocks computes afresh.
+TEST(EngineSkipping, EmptyBlocksAreKeptForTheSameMemoryAndTransparentEntries) {
+  const ref::Scene s =
+      ref::load_scene_file(std::string(VOXCAST_SOURCE_DIR) + "/scenes/default.toml",
+                           {"precision.profile=balanced", "render.width=8", "render.height=8"});
+  const cosim::SceneVolume sv = cosim::load_scene_volume(s);
+  const ref::RenderInputs in = ref::make_render_inputs(s, sv.volume, sv.gradients, s.camera.pose);
+  const bittrue::FrameSetup fs = bittrue::make_frame_setup(s.precision, s, in);
+  const bittrue::VoxelMemory memory =
+      bittrue::make_voxel_memory(s.precision, sv.volume, sv.gradients);
+  const auto fresh = [&](const bittrue::FrameSetup& f, const bittrue::VoxelMemory& m) {
+    return host::make_empty_blocks<P>(bittrue::nonzero_prefix(f.class_table), m)->distance;
+  };
+  const auto first = host::empty_blocks<P>(fs, memory);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->distance, fresh(fs, memory));
+  EXPECT_EQ(host::empty_blocks<P>(fs, memory), first) << "the same frame again: kept";
+
+  // Every entry below the first visible one made visible: fewer empty blocks.
+  bittrue::FrameSetup opaque = fs;
+  for (bittrue::ClassEntry& e : opaque.class_table) e.alpha = std::max<std::uint32_t>(e.alpha, 1);
+  const auto second = host::empty_blocks<P>(opaque, memory);
+  ASSERT_TRUE(second);
+  EXPECT_NE(second, first);
+  EXPECT_EQ(second->distance, fresh(opaque, memory));
+  EXPECT_TRUE(std::all_of(second->distance.begin(), second->distance.end(), [](std::uint8_t d) {
+    return d == 0;
+  })) << "no entry is transparent: no block is empty";
+
+  const bittrue::VoxelMemory again =
+      bittrue::make_voxel_memory(s.precision, sv.volume, sv.gradients);
+  host::empty_blocks<P>(fs, memory);  // memory's result is the last one
+  const auto other = host::empty_blocks<P>(fs, again);
+  EXPECT_NE(other, host::empty_blocks<P>(fs, memory)) << "another memory: made afresh";
+  EXPECT_EQ(other->distance, first->distance);
 }
 
 }  // namespace VOXCAST_UNITY_ID
