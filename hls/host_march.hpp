@@ -186,18 +186,7 @@ struct EngineBanks : BitTrueBanks<P> {
       int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
     // A constant condition: one of the two reads is compiled per profile.
     if (!kPacked) return BitTrueBanks<P>::read(b, addr);
-    using I = InterpolationParams<P>;
-    const bittrue::PackedVoxelWord& w = packed[8 * addr.to_uint64() + static_cast<unsigned>(b)];
-    VoxelWordFx<P> v;
-    v.value = w.value;
-    VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
-      // As BitTrueBanks::read: the raw component, then below the binary point.
-      const int_t<I::gb> raw = w.gradient[static_cast<std::size_t>(c)];
-      fixed<I::gb + I::gfb, I::gb> t = raw;
-      t >>= I::gfb;
-      v.g[c] = t;
-    }
-    return v;
+    return voxel_word_fx<P>(packed[8 * addr.to_uint64() + static_cast<unsigned>(b)]);
   }
 };
 

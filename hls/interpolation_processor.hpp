@@ -324,6 +324,25 @@ void march_ray(const GeometryRegisters<P>& r, const Banks& banks, const RaySetup
 #if VOXCAST_HLS_HOST_CODE
 namespace host {
 
+// A host word's fields (bittrue::VoxelWord, or the hls engine's
+// bittrue::PackedVoxelWord: `value` and `gradient[3]` as raw integers) as the
+// voxel word the units read.
+template <class P, class HostWord>
+VOXCAST_HLS_HOST_INLINE VoxelWordFx<P> voxel_word_fx(const HostWord& w) {
+  using I = InterpolationParams<P>;
+  VoxelWordFx<P> v;
+  v.value = w.value;
+  [[gnu::unused]] field_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
+    // The raw component as an integer, then moved below the binary point
+    // (exact: the shift drops only the gfb zero fraction bits of t).
+    const int_t<I::gb> raw = w.gradient[static_cast<std::size_t>(c)];
+    fixed<I::gb + I::gfb, I::gb> t = raw;
+    t >>= I::gfb;
+    v.g[c] = t;
+  }
+  return v;
+}
+
 template <class P>
 struct BitTrueBanks {
   const bittrue::VoxelWord* bank[8];
@@ -334,19 +353,7 @@ struct BitTrueBanks {
   }
   VOXCAST_HLS_HOST_INLINE VoxelWordFx<P> read(
       int b, const typename InterpolationParams<P>::word_addr_t& addr) const {
-    using I = InterpolationParams<P>;
-    const bittrue::VoxelWord& w = bank[b][addr.to_uint64()];
-    VoxelWordFx<P> v;
-    v.value = w.value;
-    [[gnu::unused]] field_loop : VOXCAST_HLS_HOST_UNROLL for (int c = 0; c < 3; ++c) {
-      // The raw component as an integer, then moved below the binary point
-      // (exact: the shift drops only the gfb zero fraction bits of t).
-      const int_t<I::gb> raw = w.gradient[static_cast<std::size_t>(c)];
-      fixed<I::gb + I::gfb, I::gb> t = raw;
-      t >>= I::gfb;
-      v.g[c] = t;
-    }
-    return v;
+    return voxel_word_fx<P>(bank[b][addr.to_uint64()]);
   }
 };
 

@@ -190,11 +190,11 @@ bool composite_study_segment(const RenderVolume& rv, const TransferFunction& tf,
   const auto lit = [&](const Classified& c, const Vec3& gradient) {
     return shade(c, reflectance(shading, surface_normal(gradient, rv.world_scale)));
   };
+  const bool along_ray =
+      settings.study == Study::ExactLighting || settings.study == Study::ExactValue;
   for (int j = 0; j < kStudySubsamples; ++j) {
     const double x = (j + 0.5) / kStudySubsamples;
     const Vec3 p = pf + (pb - pf) * x;
-    const bool along_ray =
-        settings.study == Study::ExactLighting || settings.study == Study::ExactValue;
     const Sample ray = along_ray ? interpolate(*rv.volume, *rv.gradients, p) : Sample{};
     const double value = settings.study == Study::ExactValue
                              ? ray.value
