@@ -39,6 +39,7 @@ Subcommand add_regress(CLI::App& voxcast);
 Subcommand add_paper(CLI::App& voxcast);
 Subcommand add_bench(CLI::App& voxcast);
 Subcommand add_flythrough(CLI::App& voxcast);
+Subcommand add_burst_study(CLI::App& voxcast);
 Subcommand add_demo(CLI::App& voxcast);
 Subcommand add_constraints(CLI::App& voxcast);
 Subcommand add_synth_script(CLI::App& voxcast);
