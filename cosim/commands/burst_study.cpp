@@ -1,13 +1,13 @@
 // voxcast burst-study SCENE: the volume's layouts in 64-byte DDR4 bursts on a
 // four-channel card, measured on the scene's samples (cosim/explore/burst_study.hpp).
-#include "cosim/explore/burst_study.hpp"
-
-#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "cosim/commands/command.hpp"
+#include "cosim/explore/burst_study.hpp"
 
 namespace voxcast::cosim::commands {
 
