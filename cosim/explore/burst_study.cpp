@@ -29,6 +29,7 @@ using rtl::layout::BankGroupMap;
 using rtl::layout::BurstCounter;
 using rtl::layout::BurstLayout;
 using rtl::layout::Reuse;
+using rtl::layout::RowMap;
 
 // A recorded sample: its cell's i0, 10 bits per axis, and bit 31 on a ray's
 // first sample.
@@ -183,9 +184,10 @@ BurstStudyResult run_burst_study(const ref::Scene& scene, const BurstStudyOption
   r.cache_lines = options.cache_lines;
   std::vector<std::unique_ptr<BurstLayout>> layouts;
   for (const auto& shape : rtl::layout::burst_shapes(r.voxels_per_burst))
-    for (const BankGroupMap g : {BankGroupMap::kPlain, BankGroupMap::kSkewed})
-      layouts.push_back(
-          std::make_unique<BurstLayout>(dims, shape, r.voxels_per_burst, g, r.memory));
+    for (const RowMap rows : {RowMap::kLinear, RowMap::kBlocks})
+      for (const BankGroupMap g : {BankGroupMap::kPlain, BankGroupMap::kSkewed})
+        layouts.push_back(
+            std::make_unique<BurstLayout>(dims, shape, r.voxels_per_burst, g, r.memory, rows));
   // One layout per worker: each counts the whole stream in order. The
   // counters are made here, where their errors can be thrown.
   std::vector<BurstCounter> counters;
@@ -215,7 +217,7 @@ void print_burst_study(std::ostream& os, const BurstStudyResult& r) {
      << " per ray); cache reuse: " << r.cache_lines << " lines per channel, direct-mapped\n"
      << "per reuse scheme: bursts/sample, busiest channel / mean, same bank group %, row hits %, "
         "G samples/s the busiest data bus allows\n";
-  os << "layout          ch";
+  os << "layout                 ch";
   for (const Reuse reuse : rtl::layout::kAllReuse)
     os << " | " << rtl::layout::name(reuse)
        << std::string(37 - std::string(rtl::layout::name(reuse)).size(), ' ');
@@ -226,7 +228,7 @@ void print_burst_study(std::ostream& os, const BurstStudyResult& r) {
   for (std::size_t i = 0; i < r.layouts.size(); ++i) {
     const BurstLayoutResult& l = r.layouts[i];
     std::string name = l.name;
-    name.resize(15, ' ');
+    name.resize(22, ' ');
     os << name << " " << axis[l.channel_axes[0]] << axis[l.channel_axes[1]];
     for (const BurstReuseResult& x : l.reuse) {
       std::string cell = fixed_text(x.bursts_per_sample, 3) + " " +

@@ -31,8 +31,8 @@ std::array<int, 2> choose_channel_axes(const std::array<int, 3>& brick) {
 }  // namespace
 
 BurstLayout::BurstLayout(std::array<int, 3> dims, std::array<int, 3> brick, int voxels_per_burst,
-                         BankGroupMap groups, const BurstMemory& memory)
-    : dims_(dims), brick_(brick), groups_(groups), memory_(memory) {
+                         BankGroupMap groups, const BurstMemory& memory, RowMap rows)
+    : dims_(dims), brick_(brick), groups_(groups), memory_(memory), rows_(rows) {
   std::ostringstream name;
   name << brick[0] << "x" << brick[1] << "x" << brick[2];
   for (int k = 0; k < 3; ++k) {
@@ -63,19 +63,35 @@ BurstLayout::BurstLayout(std::array<int, 3> dims, std::array<int, 3> brick, int 
     grid_[k] = n;
   }
   grid_[0] = ceil_div(grid_[0], kBankGroups) * kBankGroups;
-  const std::uint64_t groups_of_four = grid_[0] * grid_[1] * grid_[2] / kBankGroups;
-  const std::uint64_t capacity = std::uint64_t{memory.rows} * memory.bursts_per_row() *
-                                 static_cast<std::uint64_t>(memory.banks_per_group);
-  if (groups_of_four > capacity)
+  const auto banks = static_cast<std::uint64_t>(memory.banks_per_group);
+  std::uint64_t rows_needed = 0;
+  if (rows == RowMap::kLinear) {
+    rows_needed = ceil_div(grid_[0] * grid_[1] * grid_[2] / kBankGroups,
+                           std::uint64_t{memory.bursts_per_row()} * banks);
+  } else {
+    // The row's bricks (bursts per row x the four groups) as a cube, the
+    // extra bit of an uneven split on x, then y; x keeps at least the two
+    // bits of a group of four.
+    const int bits = std::countr_zero(memory.bursts_per_row() * static_cast<unsigned>(kBankGroups));
+    block_log2_ = {(bits + 2) / 3, (bits + 1) / 3, bits / 3};
+    if (block_log2_[0] < 2)
+      throw Error("burst layout: a row must hold at least one group of four bursts per bank group");
+    for (std::size_t k = 0; k < 3; ++k)
+      blocks_[k] = ceil_div(grid_[k], std::uint64_t{1} << block_log2_[k]);
+    blocks_[0] = ceil_div(blocks_[0], banks) * banks;
+    rows_needed = blocks_[0] * blocks_[1] * blocks_[2] / banks;
+  }
+  if (rows_needed > memory.rows)
     throw Error("burst layout " + this->name() + ": the volume needs " +
-                std::to_string(groups_of_four * kBankGroups) +
-                " bursts per channel, a channel holds " + std::to_string(capacity * kBankGroups));
+                std::to_string(rows_needed) + " rows in each bank of a channel, a bank has " +
+                std::to_string(memory.rows));
 }
 
 std::string BurstLayout::name() const {
   std::ostringstream os;
   os << brick_[0] << "x" << brick_[1] << "x" << brick_[2]
-     << (groups_ == BankGroupMap::kSkewed ? "-skewed" : "-plain");
+     << (groups_ == BankGroupMap::kSkewed ? "-skewed" : "-plain")
+     << (rows_ == RowMap::kBlocks ? "-blocks" : "");
   return os.str();
 }
 
@@ -97,14 +113,32 @@ BurstAddress BurstLayout::burst_of(const std::array<int, 3>& v) const {
   // group.
   const std::uint64_t group_sum = groups_ == BankGroupMap::kSkewed ? c[0] + c[1] + c[2] : c[0];
   a.bank_group = static_cast<int>(group_sum % kBankGroups);
-  const std::uint64_t m = a.index / kBankGroups;
-  const std::uint64_t per_row = memory_.bursts_per_row();
-  a.column = static_cast<std::uint32_t>((m % per_row) *
-                                        (static_cast<std::uint64_t>(memory_.burst_bytes) / 8u));
-  const std::uint64_t bank_row = m / per_row;
-  a.bank = static_cast<int>(bank_row % static_cast<std::uint64_t>(memory_.banks_per_group));
+  const auto columns_per_burst = static_cast<std::uint64_t>(memory_.burst_bytes) / 8u;
+  const auto banks = static_cast<std::uint64_t>(memory_.banks_per_group);
+  if (rows_ == RowMap::kLinear) {
+    const std::uint64_t m = a.index / kBankGroups;
+    const std::uint64_t per_row = memory_.bursts_per_row();
+    a.column = static_cast<std::uint32_t>((m % per_row) * columns_per_burst);
+    const std::uint64_t bank_row = m / per_row;
+    a.bank = static_cast<int>(bank_row % banks);
+    a.row = static_cast<std::uint32_t>(bank_row / banks);
+    return a;
+  }
+  // The brick's place in its cube (x fastest) gives the column; four
+  // x-consecutive places share it, one per bank group, as above.
+  std::array<std::uint64_t, 3> cube{};
+  std::uint64_t place = 0;
+  int shift = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    cube[k] = c[k] >> block_log2_[k];
+    place |= (c[k] & ((std::uint64_t{1} << block_log2_[k]) - 1u)) << shift;
+    shift += block_log2_[k];
+  }
+  a.column = static_cast<std::uint32_t>((place / kBankGroups) * columns_per_burst);
+  // Four x-consecutive cubes share a row number, one per bank.
+  a.bank = static_cast<int>((cube[0] + cube[1] + cube[2]) % banks);
   a.row =
-      static_cast<std::uint32_t>(bank_row / static_cast<std::uint64_t>(memory_.banks_per_group));
+      static_cast<std::uint32_t>((cube[0] + blocks_[0] * (cube[1] + blocks_[1] * cube[2])) / banks);
   return a;
 }
 

@@ -68,6 +68,19 @@ enum class BankGroupMap : std::uint8_t {
   kSkewed,  // bank group = (x + y + z) mod 4 (likewise)
 };
 
+// Which DDR4 row and bank a brick's group of four lands in.
+enum class RowMap : std::uint8_t {
+  // The channel's bricks in x-fastest order, 128 groups of four to a row,
+  // rows filling the banks in turn: a row is a run of x-lines.
+  kLinear,
+  // A row holds a cube of the channel's bricks (8x8x8 for 128 bursts of 64
+  // bytes in an 8 KB row, times the four bank groups), and the cube's bank is
+  // the sum of its coordinates modulo the banks: a ray leaving a cube along
+  // any axis opens a row in another bank, and the rows of the cubes around
+  // stay open for the rays next to it.
+  kBlocks,
+};
+
 // A burst's place on the card: its channel and DDR4 address.
 struct BurstAddress {
   int channel = 0;
@@ -85,10 +98,11 @@ class BurstLayout {
   // Throws voxcast::Error unless every brick edge is a power of two, their
   // product is `voxels_per_burst`, and the volume fits the channel.
   BurstLayout(std::array<int, 3> dims, std::array<int, 3> brick, int voxels_per_burst,
-              BankGroupMap groups, const BurstMemory& memory = {});
+              BankGroupMap groups, const BurstMemory& memory = {}, RowMap rows = RowMap::kLinear);
 
-  // "4x2x2", with "-skewed" for skewed bank groups.
+  // "4x2x2-plain", "4x2x2-skewed", with "-blocks" for RowMap::kBlocks.
   std::string name() const;
+  RowMap rows() const { return rows_; }
   const std::array<int, 3>& brick() const { return brick_; }
   // The two axes whose brick parities choose the channel.
   const std::array<int, 2>& channel_axes() const { return channel_axes_; }
@@ -110,6 +124,9 @@ class BurstLayout {
   std::array<int, 2> channel_axes_{};
   BankGroupMap groups_;
   BurstMemory memory_;
+  RowMap rows_;
+  std::array<int, 3> block_log2_{};        // RowMap::kBlocks: the cube's edges in bricks
+  std::array<std::uint64_t, 3> blocks_{};  // cubes per axis (x padded to whole banks)
 };
 
 // Brick shapes of `voxels_per_burst` voxels: the line along x (VIZARD II's word

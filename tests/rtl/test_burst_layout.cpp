@@ -22,6 +22,12 @@ using namespace voxcast::rtl::layout;
 using voxcast::Error;
 
 constexpr std::array<BankGroupMap, 2> kGroups{BankGroupMap::kPlain, BankGroupMap::kSkewed};
+constexpr std::array<std::pair<BankGroupMap, RowMap>, 4> kMaps{{
+    {BankGroupMap::kPlain, RowMap::kLinear},
+    {BankGroupMap::kSkewed, RowMap::kLinear},
+    {BankGroupMap::kPlain, RowMap::kBlocks},
+    {BankGroupMap::kSkewed, RowMap::kBlocks},
+}};
 
 std::array<int, 3> brick_of(const std::array<int, 3>& v, const std::array<int, 3>& brick) {
   return {v[0] / brick[0], v[1] / brick[1], v[2] / brick[2]};
@@ -32,8 +38,8 @@ TEST(BurstLayout, EveryVoxelIsInOneBurstAndEveryBurstIsOneBrick) {
   const std::array<int, 3> dims{20, 12, 9};  // no extent a multiple of every brick edge
   for (const int vpb : {16, 8, 4}) {
     for (const auto& shape : burst_shapes(vpb)) {
-      for (const BankGroupMap g : kGroups) {
-        const BurstLayout layout(dims, shape, vpb, g);
+      for (const auto& [g, rows] : kMaps) {
+        const BurstLayout layout(dims, shape, vpb, g, BurstMemory{}, rows);
         SCOPED_TRACE(layout.name());
         using Key = std::tuple<int, int, int, std::uint32_t, std::uint32_t>;
         std::map<Key, std::array<int, 3>> brick_at;  // address -> the brick it holds
@@ -183,6 +189,36 @@ TEST(BurstCounter, SkewedBankGroupsKeepAZRayAtTccdS) {
     // The bound: the busiest data bus's clocks at 1200 MHz.
     const double clocks = g == BankGroupMap::kPlain ? 4.0 + 6.0 * (per - 1) : 4.0 * per;
     EXPECT_DOUBLE_EQ(c.bound_samples_per_second(Reuse::kRay), (n - 1) / (clocks / 1.2e9));
+  }
+}
+
+TEST(BurstCounter, RowCubesKeepAZRayInItsRows) {
+  // 4x2x2 skewed on a 256x256x64 volume: the channel's grid is 64 x 64 x 16
+  // bricks, and a z ray at x = y = 0 puts 16 bricks (z = 0 .. 15 of the grid)
+  // on each of channels 0 and 2, in bank group z mod 4. Linear rows: a z step
+  // moves 64 x 64 bricks, 1024 groups of four, 8 rows of 128 groups on: bank
+  // 0 of its group, row 2z. So the first burst in each group misses and every
+  // later one conflicts: 4 and 12. Cube rows (8x8x8 bricks): z = 0 .. 7 lie in
+  // cube 0 (bank 0), 8 .. 15 in cube 1 (bank 1), one row each: per cube the
+  // first burst in each group misses and the next one there hits: 8 and 8.
+  const int n = 64;
+  const BurstLayout linear({256, 256, n}, {4, 2, 2}, 16, BankGroupMap::kSkewed);
+  const BurstLayout cubes({256, 256, n}, {4, 2, 2}, 16, BankGroupMap::kSkewed, BurstMemory{},
+                          RowMap::kBlocks);
+  EXPECT_EQ(cubes.name(), "4x2x2-skewed-blocks");
+  const std::uint64_t per = n / 4;  // bursts of the ray on channels 0 and 2
+  const BurstCounter on_linear = ray_along(linear, 2, n);
+  const BurstCounter on_cubes = ray_along(cubes, 2, n);
+  for (const int ch : {0, 2}) {
+    const ChannelLoad& l = on_linear.load(Reuse::kRay).channel[static_cast<std::size_t>(ch)];
+    EXPECT_EQ(l.bursts, per);
+    EXPECT_EQ(l.row_misses, 4u);
+    EXPECT_EQ(l.row_hits, 0u);
+    EXPECT_EQ(l.row_conflicts, per - 4);
+    const ChannelLoad& b = on_cubes.load(Reuse::kRay).channel[static_cast<std::size_t>(ch)];
+    EXPECT_EQ(b.row_misses, 8u);
+    EXPECT_EQ(b.row_hits, per - 8);
+    EXPECT_EQ(b.row_conflicts, 0u);
   }
 }
 
