@@ -197,6 +197,7 @@ TEST(RequestTraceClosedForms, Pc100StreamingBandwidthWithRefresh) {
   const double closed = 8.0 / c.clock.period_ns() * (1.0 - loss / static_cast<double>(t.tREFI));
   expect_within_1_percent(r.bandwidth_gbs, closed);
   EXPECT_NEAR(closed, 0.79437, 1e-5);
+  ::testing::Test::RecordProperty("pc100_stream_gbs", std::to_string(r.bandwidth_gbs));
 }
 
 // Every request a row conflict: one bank, rows alternating, a request every
@@ -227,6 +228,8 @@ void expect_conflict_latency(const sdram::DimmConfig& c, Cycle gap) {
       static_cast<double>(conflict * static_cast<Cycle>(n - 1) + miss) / static_cast<double>(n);
   expect_within_1_percent(r.latency_mean, static_cast<double>(conflict));
   EXPECT_DOUBLE_EQ(r.latency_mean, mean);
+  ::testing::Test::RecordProperty(c.timing.name + " conflict_latency_mean",
+                                  std::to_string(r.latency_mean));
 }
 
 TEST(RequestTraceClosedForms, RowConflictLatencyIsTrpTrcdClBurst) {
@@ -281,6 +284,8 @@ TEST(RequestTraceClosedForms, ActivateRateIsFourPerTfaw) {
   expect_within_1_percent(spacing, static_cast<double>(t.tFAW) / 4.0);
   const double closed = 4.0 * 64.0 / (static_cast<double>(t.tFAW) * c.clock.period_ns());
   expect_within_1_percent(r.bandwidth_gbs, closed);
+  ::testing::Test::RecordProperty("tfaw_act_spacing", std::to_string(spacing));
+  ::testing::Test::RecordProperty("tfaw_gbs", std::to_string(r.bandwidth_gbs));
 }
 
 }  // namespace VOXCAST_UNITY_ID
