@@ -5,7 +5,6 @@
 #include <bit>
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <memory>
 #include <ostream>
 #include <sstream>
@@ -27,10 +26,17 @@ namespace {
 bool kind_of(const std::string& op, sdram::RequestKind& kind) {
   static const std::array<const char*, 4> writes{"WRITE", "write", "P_MEM_WR", "BOFF"};
   static const std::array<const char*, 4> reads{"READ", "read", "P_MEM_RD", "P_FETCH"};
-  for (const char* w : writes)
-    if (op == w) return kind = sdram::RequestKind::kWrite, true;
-  for (const char* r : reads)
-    if (op == r) return kind = sdram::RequestKind::kRead, true;
+  const auto is = [&](const auto& names) {
+    return std::any_of(names.begin(), names.end(), [&](const char* n) { return op == n; });
+  };
+  if (is(writes)) {
+    kind = sdram::RequestKind::kWrite;
+    return true;
+  }
+  if (is(reads)) {
+    kind = sdram::RequestKind::kRead;
+    return true;
+  }
   return false;
 }
 
@@ -66,10 +72,12 @@ TraceRequest parse_line(const std::string& text, const std::string& origin, int 
              "operation \"" + op +
                  "\" is not READ, WRITE (or read, write, P_MEM_RD, P_FETCH, "
                  "P_MEM_WR, BOFF)");
+  // A cycle far below Cycle's range, so that cycles and delays added to it cannot overflow.
+  constexpr std::uint64_t kLastCycle = std::uint64_t{1} << 48;
   std::uint64_t c = 0;
-  if (!whole_number(cycle, 10, c) ||
-      c > static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max()) * 1024)
+  if (!whole_number(cycle, 10, c))
     bad_line(origin, line, "cycle \"" + cycle + "\" is not a whole number of clocks");
+  if (c > kLastCycle) bad_line(origin, line, "cycle " + cycle + " is beyond 2^48 clocks");
   r.cycle = static_cast<Cycle>(c);
   return r;
 }
@@ -219,7 +227,7 @@ TraceRunResult run_request_trace(const sdram::DimmConfig& dimm,
   const int window = static_cast<int>(config.queue_depth);
   sdram::Controller ctl(
       dimm,
-      sched::make_scheduler(config.scheduler, {.reorder_window = window, .starvation_limit = 64}),
+      sched::make_scheduler(config.scheduler, {.reorder_window = window}),
       sched::make_refresh_policy("eager"),
       sdram::ControllerConfig{.queue_depth = config.queue_depth,
                               .return_depth = config.queue_depth});
