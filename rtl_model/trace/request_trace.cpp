@@ -225,12 +225,10 @@ TraceRunResult run_request_trace(const sdram::DimmConfig& dimm,
                                  const AddressMapping& mapping, const TraceRunConfig& config) {
   check_addresses(trace, mapping, "trace");
   const int window = static_cast<int>(config.queue_depth);
-  sdram::Controller ctl(
-      dimm,
-      sched::make_scheduler(config.scheduler, {.reorder_window = window}),
-      sched::make_refresh_policy("eager"),
-      sdram::ControllerConfig{.queue_depth = config.queue_depth,
-                              .return_depth = config.queue_depth});
+  sdram::Controller ctl(dimm, sched::make_scheduler(config.scheduler, {.reorder_window = window}),
+                        sched::make_refresh_policy("eager"),
+                        sdram::ControllerConfig{.queue_depth = config.queue_depth,
+                                                .return_depth = config.queue_depth});
   if (config.observer != nullptr) ctl.set_observer(config.observer);
 
   // Step 1: each cycle, the requests whose cycle has come enter while the
