@@ -225,10 +225,16 @@ TraceRunResult run_request_trace(const sdram::DimmConfig& dimm,
                                  const AddressMapping& mapping, const TraceRunConfig& config) {
   check_addresses(trace, mapping, "trace");
   const int window = static_cast<int>(config.queue_depth);
-  sdram::Controller ctl(dimm, sched::make_scheduler(config.scheduler, {.reorder_window = window}),
-                        sched::make_refresh_policy("eager"),
-                        sdram::ControllerConfig{.queue_depth = config.queue_depth,
-                                                .return_depth = config.queue_depth});
+  // Read data leaves the controller the cycle it completes (DRAMsim3's
+  // callbacks), so the return path must never hold a column command back:
+  // one slot per clock from a READ to the end of its data is enough.
+  const sdram::TimingCycles t = sdram::to_cycles(dimm.timing, dimm.clock, dimm.burst_length);
+  const auto in_flight_max = static_cast<std::size_t>(std::max(t.CL, t.CWL) + t.burst_cycles() + 1);
+  sdram::Controller ctl(
+      dimm, sched::make_scheduler(config.scheduler, {.reorder_window = window}),
+      sched::make_refresh_policy("eager"),
+      sdram::ControllerConfig{.queue_depth = config.queue_depth,
+                              .return_depth = std::max(config.queue_depth, in_flight_max)});
   if (config.observer != nullptr) ctl.set_observer(config.observer);
 
   // Step 1: each cycle, the requests whose cycle has come enter while the
@@ -260,7 +266,6 @@ TraceRunResult run_request_trace(const sdram::DimmConfig& dimm,
 
   // Step 2: the statistics.
   const sdram::ControllerStats& s = ctl.stats();
-  const sdram::TimingCycles& t = ctl.dimm().timing();
   TraceRunResult r;
   r.requests = trace.size();
   r.reads = s.reads;

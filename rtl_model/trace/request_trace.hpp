@@ -93,8 +93,8 @@ void check_addresses(const std::vector<TraceRequest>& trace, const AddressMappin
 
 struct TraceRunConfig {
   std::string scheduler = "fr-fcfs";
-  // Pending requests (the controller's queue, FR-FCFS's reorder window) and
-  // read-data return slots: DRAMsim3's DDR4 configurations' trans_queue_size.
+  // Pending requests (the controller's queue, FR-FCFS's reorder window). The
+  // read-data return path never back-pressures (data leaves as it completes).
   std::size_t queue_depth = 32;
   sdram::CommandObserver* observer = nullptr;  // told of every command; may be null
 };
