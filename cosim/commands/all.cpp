@@ -11,7 +11,7 @@ std::vector<Subcommand> add_all(CLI::App& voxcast) {
           add_paper(voxcast),        add_bench(voxcast),        add_flythrough(voxcast),
           add_burst_study(voxcast),  add_demo(voxcast),         add_constraints(voxcast),
           add_synth_script(voxcast), add_report(voxcast),       add_fuzz_scenes(voxcast),
-          add_tune(voxcast)};
+          add_tune(voxcast),         add_dram_trace(voxcast)};
 }
 
 void add_set_option(CLI::App& cmd, ref::Overrides& overrides) {

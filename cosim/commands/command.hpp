@@ -46,6 +46,7 @@ Subcommand add_synth_script(CLI::App& voxcast);
 Subcommand add_report(CLI::App& voxcast);
 Subcommand add_fuzz_scenes(CLI::App& voxcast);
 Subcommand add_tune(CLI::App& voxcast);
+Subcommand add_dram_trace(CLI::App& voxcast);
 
 // --set KEY=VALUE (repeatable): the scene overrides every scene-reading
 // subcommand takes.

@@ -16,7 +16,9 @@ namespace {
 RtlConfig rtl_config_for_board(const board::Board& b) {
   const board::Memory& m = b.memory;
   if (m.type != "sdr")
-    cannot_model(b, "memory.type = \"" + m.type + "\" (the Dimm model is SDR SDRAM)");
+    cannot_model(b, "memory.type = \"" + m.type +
+                        "\" (the card model runs SDR SDRAM; one DDR4 channel runs in the DRAM "
+                        "model, voxcast dram-trace)");
   if (m.dimms != layout::kDimms)
     cannot_model(b, "memory.dimms = " + std::to_string(m.dimms) +
                         " (the VIZARD II layout interleaves the volume over " +
@@ -39,6 +41,33 @@ RtlConfig rtl_config_for_board(const board::Board& b) {
     (void)sdram::to_cycles(m.timing, c.pipeline.dimm.clock, m.burst_length);
   } catch (const Error& e) {
     cannot_model(b, e.what());
+  }
+  return c;
+}
+
+sdram::DimmConfig channel_config_for_board(const board::Board& b) {
+  const board::Memory& m = b.memory;
+  const auto cannot = [&](const std::string& key, const std::string& why) {
+    throw Error("board " + b.name + " (" + b.origin + "): " + key +
+                ": the DRAM model cannot simulate it: " + why);
+  };
+  // The standards' burst lengths: JESD79-4B fixes DDR4 at BL8 (BC4 is not
+  // modelled); SDR SDRAM's mode register gives 1, 2, 4 or 8 (full page not modelled).
+  const int bl = m.burst_length;
+  if (m.type == "ddr4" && bl != 8)
+    cannot("memory.burst_length", std::to_string(bl) + " (DDR4 bursts are BL8)");
+  if (m.type == "sdr" && bl != 1 && bl != 2 && bl != 4 && bl != 8)
+    cannot("memory.burst_length",
+           std::to_string(bl) + " (SDR bursts of 1, 2, 4 or 8 are modelled)");
+  sdram::DimmConfig c;
+  c.geometry = m.geometry;
+  c.timing = m.timing;
+  c.clock = b.memory_clock().domain();
+  c.burst_length = bl;
+  try {
+    (void)sdram::to_cycles(m.timing, c.clock, bl);
+  } catch (const Error& e) {
+    cannot("memory.timing", e.what());
   }
   return c;
 }

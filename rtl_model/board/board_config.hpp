@@ -13,11 +13,20 @@ namespace voxcast::rtl {
 // The baseline RtlConfig (in-order, eager refresh, scan-line, linear layout)
 // with each DIMM's geometry, datasheet timing, clock and burst length from the
 // board. Throws voxcast::Error naming the board when the model cannot
-// simulate it: memory that is not SDR SDRAM (the Dimm is an SDR device), or a
+// simulate it: memory that is not SDR SDRAM (the card model runs SDR; one DDR4
+// channel runs in the DRAM model, channel_config_for_board), or a
 // core clock other than the memory clock (the model runs the pipeline at the
 // SDRAM clock, as VIZARD II did: 2001 paper §2.3), or not four DIMMs (the
 // VIZARD II layout interleaves the volume over four).
 RtlConfig rtl_config_for_board(const board::Board& board);
+
+// One channel (one DIMM) of the board's memory as the DRAM model runs it
+// (`voxcast dram-trace`): geometry, datasheet timing (SDR or DDR4), the
+// memory clock and the burst length. Throws voxcast::Error, one line naming
+// the board file, the key and the reason, when the model cannot run it: a
+// burst length the standard does not have (memory.burst_length), a grade
+// not rated for the clock or not convertible (memory.timing).
+sdram::DimmConfig channel_config_for_board(const board::Board& board);
 
 // The host bus of the board as the PCI model's configuration: its clock and
 // AD width; the per-transaction latencies stay the model's 2001-chipset

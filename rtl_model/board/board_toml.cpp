@@ -29,11 +29,16 @@ const std::map<std::string, std::vector<std::string>>& schema() {
       {"memory",
        {"type", "clock", "dimms", "burst_length", "ports", "source", "geometry", "timing", "io"}},
       {"memory.geometry",
-       {"module", "component", "banks", "rows", "columns", "bus_bits", "source"}},
+       {"module", "component", "banks", "bank_groups?", "rows", "columns", "bus_bits", "source"}},
+      // The DDR4 keys (cwl, the _ck/_ns pairs) are required with memory.type
+      // = "ddr4" and refused with "sdr" (read_memory checks).
       {"memory.timing",
-       {"name", "part", "tCK_min_ns", "cas_latency", "tRCD_ns", "tRP_ns", "tRAS_ns", "tRAS_max_ns",
-        "tRC_ns", "tRRD_ns", "tWR_ns", "tRFC_ns", "tREF_ms", "refresh_count", "tCCD_ck", "tCDL_ck",
-        "tMRD_ck", "source"}},
+       {"name",       "part",          "tCK_min_ns", "cas_latency", "tRCD_ns",    "tRP_ns",
+        "tRAS_ns",    "tRAS_max_ns",   "tRC_ns",     "tRRD_ns",     "tWR_ns",     "tRFC_ns",
+        "tREF_ms",    "refresh_count", "tCCD_ck",    "tCDL_ck",     "tMRD_ck",    "source",
+        "cwl?",       "tRRD_S_ck?",    "tRRD_S_ns?", "tRRD_L_ck?",  "tRRD_L_ns?", "tFAW_ck?",
+        "tFAW_ns?",   "tCCD_S_ck?",    "tCCD_S_ns?", "tCCD_L_ck?",  "tCCD_L_ns?", "tWTR_S_ck?",
+        "tWTR_S_ns?", "tWTR_L_ck?",    "tWTR_L_ns?", "tRTP_ck?",    "tRTP_ns?"}},
       {"memory.io", {"interface", "tAC_ns?", "tOH_ns?", "tIS_ns?", "tIH_ns?", "source", "trace?"}},
       {"memory.io.trace", {"clock_min_ns", "clock_max_ns", "data_min_ns", "data_max_ns", "source"}},
       {"host", {"interface", "clock", "bus_bits", "lanes?", "ports", "source", "io"}},
@@ -284,6 +289,10 @@ sdram::Geometry read_geometry(const Reader& r) {
     return static_cast<std::uint32_t>(v);
   };
   g.banks = pow2("banks", 1, 64);
+  if (r.has("bank_groups")) {
+    g.bank_groups = pow2("bank_groups", 1, 16);
+    if (g.banks % g.bank_groups != 0) r.fail("bank_groups", "does not divide banks");
+  }
   g.rows = pow2("rows", 2, 1 << 20);
   g.columns = pow2("columns", 2, 1 << 16);
   g.bus_bits = pow2("bus_bits", 8, 1024);
@@ -317,6 +326,30 @@ sdram::TimingNs read_timing(const Reader& r) {
   if (t.tREFI_ns() <= t.tRFC_ns) r.fail("refresh_count", "gives tREFI <= tRFC");
   return t;
 }
+
+// The parameters DDR4 adds (JESD79-4B): CWL and each max(nCK, ns) pair as
+// NAME_ck and NAME_ns.
+sdram::Ddr4Ns read_ddr4_timing(const Reader& r) {
+  sdram::Ddr4Ns d;
+  d.cwl = r.integer("cwl", 9, 18);
+  const auto pair = [&](const std::string& name) {
+    return sdram::ClocksOrNs{r.integer(name + "_ck", 0, 256), r.number(name + "_ns", 0, 1000)};
+  };
+  d.tRRD_S = pair("tRRD_S");
+  d.tRRD_L = pair("tRRD_L");
+  d.tFAW = pair("tFAW");
+  d.tCCD_S = pair("tCCD_S");
+  d.tCCD_L = pair("tCCD_L");
+  d.tWTR_S = pair("tWTR_S");
+  d.tWTR_L = pair("tWTR_L");
+  d.tRTP = pair("tRTP");
+  return d;
+}
+
+constexpr const char* kDdr4TimingKeys[] = {
+    "cwl",       "tRRD_S_ck", "tRRD_S_ns", "tRRD_L_ck", "tRRD_L_ns", "tFAW_ck",
+    "tFAW_ns",   "tCCD_S_ck", "tCCD_S_ns", "tCCD_L_ck", "tCCD_L_ns", "tWTR_S_ck",
+    "tWTR_S_ns", "tWTR_L_ck", "tWTR_L_ns", "tRTP_ck",   "tRTP_ns"};
 
 Window read_window(const Reader& r, const std::string& what) {
   const Window w{r.number(what + "_min_ns", 0, kMaxTraceNs),
@@ -379,7 +412,14 @@ Memory read_memory(const Reader& r) {
     r.fail("ports", "= \"" + m.ports + "\" needs {i} for the DIMM index");
   m.source = r.string("source");
   m.geometry = read_geometry(r.table("geometry"));
-  m.timing = read_timing(r.table("timing"));
+  const Reader timing = r.table("timing");
+  m.timing = read_timing(timing);
+  if (m.type == "ddr4") {
+    m.timing.ddr4 = read_ddr4_timing(timing);
+  } else {
+    for (const char* k : kDdr4TimingKeys)
+      if (timing.has(k)) timing.fail(k, "is a DDR4 key (memory.type = \"" + m.type + "\")");
+  }
   m.io = read_sdram_io(r.table("io"));
   if (m.type == "sdr" && m.io.interface != "system_synchronous")
     r.fail("io", "of SDR SDRAM must be interface = \"system_synchronous\"");

@@ -96,7 +96,8 @@ std::ostream& operator<<(std::ostream& os, const DimmStats& s) {
 // ---- Construction ------------------------------------------------------------------------
 namespace {
 const Geometry& validated(const Geometry& g) {
-  if (g.banks == 0 || g.rows == 0 || g.columns == 0 || g.bus_bits == 0 || g.bus_bits % 8 != 0) {
+  if (g.banks == 0 || g.rows == 0 || g.columns == 0 || g.bus_bits == 0 || g.bus_bits % 8 != 0 ||
+      g.bank_groups == 0 || g.banks % g.bank_groups != 0) {
     std::ostringstream os;
     os << "DIMM geometry '" << g.module << "' is invalid: " << g;
     throw Error(os.str());
@@ -112,7 +113,7 @@ Dimm::Dimm(DimmConfig config)
       refresh_(timing_.tREFI, config_.refresh_postpone_limit),
       banks_(validated(config_.geometry).banks),
       last_by_bank_(config_.geometry.banks),
-      not_before_(table_, config_.geometry.banks, kNever) {
+      not_before_(table_, config_.geometry.banks, kNever, config_.geometry.bank_groups) {
   for (auto& last : last_by_bank_) last.fill(kNever);
   last_by_rank_.fill(kNever);
   stats_.banks.resize(config_.geometry.banks);
@@ -157,6 +158,25 @@ Gate Dimm::gate(Command cmd, std::uint32_t bank, Cycle now) const {
   if (cmd == Command::kNop) return g;
   const bool rank_cmd = is_rank_command(cmd);
   check_bank_exists(cmd, bank);
+  const Geometry& geo = config_.geometry;
+  // Does a row of scope `scope` couple a previous command on bank b with this one?
+  const auto couples = [&](Scope scope, std::uint32_t b) {
+    const bool same = !rank_cmd && b == bank;
+    const bool same_group = !rank_cmd && geo.group_of(b) == geo.group_of(bank);
+    switch (scope) {
+      case Scope::kSameBank:
+        return same;
+      case Scope::kOtherBank:
+        return !same;
+      case Scope::kAnyBank:
+        return true;
+      case Scope::kSameBankGroup:
+        return same_group;
+      case Scope::kOtherBankGroup:
+        return !same_group;
+    }
+    return true;
+  };
   for (std::size_t i : table_.rows_before(cmd)) {
     const Constraint& c = table_.rows()[i];
     auto consider = [&](Cycle prev_cycle, std::uint32_t prev_bank) {
@@ -169,11 +189,15 @@ Gate Dimm::gate(Command cmd, std::uint32_t bank, Cycle now) const {
       continue;
     }
     for (std::uint32_t b = 0; b < bank_count(); ++b) {
-      const bool same = !rank_cmd && b == bank;
-      if ((c.scope == Scope::kSameBank && !same) || (c.scope == Scope::kOtherBank && same))
-        continue;
-      consider(last_by_bank_[b][index_of(c.prev)], b);
+      if (couples(c.scope, b)) consider(last_by_bank_[b][index_of(c.prev)], b);
     }
+  }
+  // DDR4 tFAW: the fifth ACT in any window of tFAW clocks is illegal.
+  const Constraint* faw = table_.four_activate_window();
+  const Activate& fourth_last = activates_[oldest_activate_];
+  if (cmd == Command::kAct && faw != nullptr && fourth_last.cycle != kNever &&
+      fourth_last.cycle + faw->cycles > g.earliest) {
+    g = Gate{fourth_last.cycle + faw->cycles, faw, fourth_last.cycle, fourth_last.bank};
   }
   return g;
 }
@@ -249,6 +273,13 @@ bool Dimm::check(Command cmd, const Address& a, Cycle now, std::string* why) con
     return reject([&](std::ostream& os) {
       const Gate gt = gate(cmd, a.bank, now);
       const Constraint& c = *gt.binding;
+      if (&c == table_.four_activate_window()) {
+        os << "violates " << c.parameter << " (" << ConstraintTable::kActivatesPerWindow
+           << " ACTs since the ACT to bank " << gt.since_bank << " at cycle " << gt.since
+           << ": a fifth needs " << c.cycles << " cycles after it; earliest cycle " << gt.earliest
+           << ")";
+        return;
+      }
       os << "violates " << c.parameter << " (" << c.prev;
       if (!is_rank_command(c.prev)) os << " to bank " << gt.since_bank;
       os << " at cycle " << gt.since << ", " << c.scope << ", needs " << c.cycles
@@ -316,12 +347,15 @@ Issued Dimm::issue(Command cmd, const Address& a, Cycle now) {
   issued.address = a;
   issued.cycle = now;
   if (cmd == Command::kNop) return issued;
+  const Cycle burst = timing_.burst_cycles();
   if (is_read_command(cmd)) {
-    // Data on the bus CL clocks after the READ, one beat per clock.
-    issued.data = DataWindow{now + timing_.CL, now + timing_.CL + timing_.BL - 1};
+    // Data on the bus CL clocks after the READ, for a burst (SDR: one beat a
+    // clock; DDR4: two, BL8 in 4 clocks, JESD79-4B READ timing).
+    issued.data = DataWindow{now + timing_.CL, now + timing_.CL + burst - 1};
   } else if (cmd == Command::kWr) {
-    // Write latency 0: data-in registered with the WRITE and after it.
-    issued.data = DataWindow{now, now + timing_.BL - 1};
+    // SDR: write latency 0, data-in registered with the WRITE and after it;
+    // DDR4: CWL clocks after it.
+    issued.data = DataWindow{now + timing_.CWL, now + timing_.CWL + burst - 1};
   }
   apply(cmd, a, now);
   if (observer_) observer_->on_command(cmd, a, now);
@@ -333,22 +367,24 @@ void Dimm::apply(Command cmd, const Address& a, Cycle now) {
     case Command::kAct:
       banks_[a.bank] = Bank{BankState::kActive, a.row, now};
       ++stats_.banks[a.bank].activates;
+      activates_[oldest_activate_] = Activate{now, a.bank};
+      oldest_activate_ = (oldest_activate_ + 1) % activates_.size();
       break;
     case Command::kRd:
       ++stats_.banks[a.bank].reads;
-      stats_.data_bus_busy_cycles += timing_.BL;
+      stats_.data_bus_busy_cycles += timing_.burst_cycles();
       break;
     case Command::kRda:
       // The row closes where its internal PRECHARGE starts; the bank takes no
       // other command for it (the table's RDA rows time what follows).
       ++stats_.banks[a.bank].reads;
       ++stats_.banks[a.bank].auto_precharges;
-      stats_.data_bus_busy_cycles += timing_.BL;
+      stats_.data_bus_busy_cycles += timing_.burst_cycles();
       close_row(a.bank, now + timing_.read_to_precharge());
       break;
     case Command::kWr:
       ++stats_.banks[a.bank].writes;
-      stats_.data_bus_busy_cycles += timing_.BL;
+      stats_.data_bus_busy_cycles += timing_.burst_cycles();
       break;
     case Command::kPre:
       if (banks_[a.bank].state == BankState::kActive) close_row(a.bank, now);

@@ -79,7 +79,8 @@ struct DataWindow {
 std::ostream& operator<<(std::ostream& os, const DataWindow& w);
 
 // The earliest cycle a command may be issued and the constraint that binds
-// there (none when only `now` binds).
+// there (none when only `now` binds). For DDR4's tFAW the binding constraint
+// is ConstraintTable::four_activate_window() and `since` the 4th-last ACT.
 struct Gate {
   Cycle earliest = 0;
   const Constraint* binding = nullptr;
@@ -91,7 +92,9 @@ struct Issued {
   Command command = Command::kNop;
   Address address;
   Cycle cycle = 0;
-  std::optional<DataWindow> data;  // RD: CL later, BL beats; WR: from the command
+  // RD: CL later; WR: from the command (SDR) or CWL later (DDR4); for
+  // burst_cycles() clocks.
+  std::optional<DataWindow> data;
 };
 
 std::ostream& operator<<(std::ostream& os, const Issued& i);
@@ -110,7 +113,7 @@ struct DimmStats {
   std::uint64_t commands = 0;  // excluding NOP
   std::uint64_t precharge_alls = 0;
   std::uint64_t refreshes = 0;     // every REF refreshes a row in every bank
-  Cycle data_bus_busy_cycles = 0;  // beats moved
+  Cycle data_bus_busy_cycles = 0;  // clocks with data on the bus (SDR: beats; DDR: beats / 2)
   Cycle refresh_busy_cycles = 0;   // tRFC per REF
 
   BankStats total() const;
@@ -197,6 +200,14 @@ class Dimm {
   // for the rank (PREA, REF).
   std::vector<std::array<Cycle, kCommandCount>> last_by_bank_;
   std::array<Cycle, kCommandCount> last_by_rank_;
+  // DDR4's four-activate window: the last four ACTs (cycle, bank), a ring
+  // whose entry activates_[oldest_activate_] is the 4th-last.
+  struct Activate {
+    Cycle cycle = kNever;
+    std::uint32_t bank = 0;
+  };
+  std::array<Activate, ConstraintTable::kActivatesPerWindow> activates_{};
+  std::size_t oldest_activate_ = 0;
   Cycle last_command_ = kNever;
   // Per bank and command (and for the rank commands) the first cycle every
   // row issued so far allows: the simulation asks earliest() several times

@@ -5,8 +5,10 @@
 namespace voxcast::rtl::sdram {
 
 std::ostream& operator<<(std::ostream& os, const Geometry& g) {
-  return os << g.module << ": " << g.banks << " banks x " << g.rows << " rows x " << g.columns
-            << " columns x " << g.bus_bits << " bits = " << (g.bytes() >> 20) << " MB";
+  os << g.module << ": " << g.banks << " banks";
+  if (g.bank_groups > 1) os << " (" << g.bank_groups << " groups)";
+  return os << " x " << g.rows << " rows x " << g.columns << " columns x " << g.bus_bits
+            << " bits = " << (g.bytes() >> 20) << " MB";
 }
 
 namespace geometries {
@@ -23,6 +25,22 @@ Geometry mt4lsdt864a() {
       .rows = 4096,
       .columns = 512,
       .bus_bits = 64,
+  };
+}
+
+Geometry mta18asf2g72pz() {
+  return Geometry{
+      .module = "Micron MTA18ASF2G72PZ-2G3 (16 GB RDIMM, 2 Gig x 72, single rank)",
+      .component = "18 x Micron MT40A2G4 (8Gb, 512 Meg x 4 x 16 banks in 4 bank groups)",
+      .source =
+          "Micron 16GB (x72, ECC, SR) 288-pin DDR4 RDIMM data sheet (MTA18ASF2G72PZ); 8Gb x4 "
+          "addressing from JESD79-4B (4 bank groups BG0-BG1, 4 banks BA0-BA1, 128K rows "
+          "A0-A16, 1K columns A0-A9)",
+      .banks = 16,
+      .rows = 131072,
+      .columns = 1024,
+      .bus_bits = 64,
+      .bank_groups = 4,
   };
 }
 }  // namespace geometries

@@ -17,7 +17,12 @@ struct Geometry {
   std::uint32_t rows = 0;     // per bank
   std::uint32_t columns = 0;  // per row, in bus beats
   std::uint32_t bus_bits = 0;
+  // DDR4 bank groups (JESD79-4B: 4 in 8Gb x4/x8 parts); the banks above are
+  // all of them, group g holding banks g * banks_per_group() onwards. SDR: 1.
+  std::uint32_t bank_groups = 1;
 
+  std::uint32_t banks_per_group() const { return banks / bank_groups; }
+  std::uint32_t group_of(std::uint32_t bank) const { return bank / banks_per_group(); }
   std::uint32_t bytes_per_beat() const { return bus_bits / 8; }
   std::uint64_t bytes_per_row() const { return std::uint64_t{columns} * bytes_per_beat(); }
   std::uint64_t bytes() const { return std::uint64_t{banks} * rows * bytes_per_row(); }
@@ -32,6 +37,11 @@ namespace geometries {
 // 64-bit bus: 4 banks x 4096 rows x 512 columns x 64 bits = 64 MB.
 // VIZARD II's 256^3 volume at 64 bits per voxel pair is 32 MB per DIMM.
 Geometry mt4lsdt864a();
+// Micron MTA18ASF2G72PZ-2G3, 16 GB DDR4 RDIMM, single rank: 18 x MT40A2G4
+// (8Gb x4: 4 bank groups x 4 banks, 128K rows A0-A16, 1K columns), 16 on the
+// 64 data bits (2 for ECC, not modelled): 16 banks x 131,072 rows x 1,024
+// columns x 64 bits = 16 GiB (the U250's DIMM, constraints/boards/alveo_u250.toml).
+Geometry mta18asf2g72pz();
 }  // namespace geometries
 
 }  // namespace voxcast::rtl::sdram

@@ -2,6 +2,7 @@
 // may this command go?" far more often than commands issue: per bank and
 // command (and for the rank commands) the first cycle that every row issued
 // so far allows. Issuing a command raises those cycles; asking is one look-up.
+// DDR4's bank groups split "other bank" into the same and another group.
 // The Dimm (dimm.hpp) and FastInOrderPort (pipeline/fast_in_order_port.hpp)
 // keep their timing in one of these.
 //
@@ -10,8 +11,10 @@
 // couples b with bank, read as Dimm::gate reads them: a rank command (PREA,
 // REF) on either side binds every bank, and a rank command after a bank
 // command sees every bank as "other". Rows that do not apply leave the
-// initial cycle. tests/rtl/test_sdram_dimm.cpp checks Dimm::earliest against
-// the table scan (Dimm::gate) on random legal sequences.
+// initial cycle. With a four-activate window (DDR4 tFAW), at(ACT, bank) is
+// also at least the 4th-last ACT's cycle + tFAW. tests/rtl/test_sdram_dimm.cpp
+// and test_sdram_ddr4.cpp check Dimm::earliest against the table scan
+// (Dimm::gate) on random legal sequences.
 //
 // What makes raise() cheap: the rows of one previous command are folded when
 // the table is compiled into, per later command, the largest delay for the
@@ -33,39 +36,52 @@ namespace voxcast::rtl::sdram {
 class NotBefore {
  public:
   // Every bank and rank cycle starts at `initial` (kNever: no command yet).
-  NotBefore(const ConstraintTable& table, std::uint32_t banks, Cycle initial)
-      : banks_(banks), bank_(banks) {
+  // `bank_groups` divides `banks` (group g: banks g * banks / bank_groups on).
+  NotBefore(const ConstraintTable& table, std::uint32_t banks, Cycle initial,
+            std::uint32_t bank_groups = 1)
+      : banks_(banks), group_(banks), bank_(banks) {
+    for (std::uint32_t b = 0; b < banks; ++b) group_[b] = b / (banks / bank_groups);
     for (auto& b : bank_) b.fill(initial);
     every_.fill(initial);
     rank_.fill(initial);
+    if (const Constraint* w = table.four_activate_window()) faw_ = w->cycles;
+    activates_.fill(kNever);
     // Fold the rows by previous command: per later command the delay to the
-    // issuing bank, to the other banks, and to a rank command.
+    // issuing bank, to the other banks of its group, to the banks of the
+    // other groups, and to a rank command.
     struct Fold {
-      Cycle own = kNone, other = kNone, rank = kNone;
+      Cycle own = kNone, group = kNone, other = kNone, rank = kNone;
     };
     std::array<std::array<Fold, kCommandCount>, kCommandCount> fold{};
     for (const Constraint& c : table.rows()) {
       const bool rank = is_rank_command(c.prev);
       Fold& f = fold[index_of(c.prev)][index_of(c.next)];
+      const auto raise_to = [&](Cycle& to) { to = std::max(to, c.cycles); };
       if (is_rank_command(c.next)) {
-        if (rank || c.scope != Scope::kSameBank) f.rank = std::max(f.rank, c.cycles);
-      } else if (!rank && c.scope == Scope::kSameBank) {
-        f.own = std::max(f.own, c.cycles);
-      } else {
-        f.other = std::max(f.other, c.cycles);
-        // A rank command is issued with bank 0: it binds every bank alike.
-        if (rank || c.scope != Scope::kOtherBank) f.own = std::max(f.own, c.cycles);
+        if (rank || c.scope != Scope::kSameBank) raise_to(f.rank);
+        continue;
       }
+      // A rank command is issued with bank 0: it binds every bank alike.
+      const Scope scope = rank ? Scope::kAnyBank : c.scope;
+      const bool own =
+          scope == Scope::kSameBank || scope == Scope::kAnyBank || scope == Scope::kSameBankGroup;
+      const bool group =
+          scope == Scope::kOtherBank || scope == Scope::kAnyBank || scope == Scope::kSameBankGroup;
+      const bool other =
+          scope == Scope::kOtherBank || scope == Scope::kAnyBank || scope == Scope::kOtherBankGroup;
+      if (own) raise_to(f.own);
+      if (group) raise_to(f.group);
+      if (other) raise_to(f.other);
     }
     for (std::size_t p = 0; p < kCommandCount; ++p)
       for (std::size_t n = 0; n < kCommandCount; ++n) {
         const Fold& f = fold[p][n];
-        if (f.rank != kNone) after_[p].push_back(Entry{Kind::kRank, n, f.rank, kNone});
-        if (f.own == kNone && f.other == kNone) continue;
-        const Kind k = f.own == f.other    ? Kind::kEveryBank
-                       : f.other == kNone ? Kind::kOwnBank
-                                          : Kind::kPerBank;
-        after_[p].push_back(Entry{k, n, f.own, f.other});
+        if (f.rank != kNone) after_[p].push_back(Entry{Kind::kRank, n, f.rank, kNone, kNone});
+        if (f.own == kNone && f.group == kNone && f.other == kNone) continue;
+        const Kind k = f.own == f.group && f.group == f.other ? Kind::kEveryBank
+                       : f.group == kNone && f.other == kNone ? Kind::kOwnBank
+                                                              : Kind::kPerBank;
+        after_[p].push_back(Entry{k, n, f.own, f.group, f.other});
       }
   }
 
@@ -75,7 +91,9 @@ class NotBefore {
     const std::size_t n = index_of(cmd);
     if (is_rank_command(cmd)) return rank_[n];
     const Cycle own = bank_[bank][n], every = every_[n];
-    return own < every ? every : own;
+    const Cycle c = own < every ? every : own;
+    if (cmd != Command::kAct || faw_ == 0) return c;
+    return std::max(c, activates_[oldest_] + faw_);
   }
 
   // `cmd` to `bank` issued at `now` (bank 0 for a rank command).
@@ -86,6 +104,10 @@ class NotBefore {
       const Cycle cur = c;
       c = cur < v ? v : cur;
     };
+    if (cmd == Command::kAct && faw_ != 0) {  // the 4th-last ACT moves on
+      activates_[oldest_] = now;
+      oldest_ = (oldest_ + 1) % activates_.size();
+    }
     for (const Entry& e : after_[index_of(cmd)]) {
       switch (e.kind) {
         case Kind::kRank:
@@ -99,7 +121,9 @@ class NotBefore {
           break;
         case Kind::kPerBank:  // kNone + now stays below every cycle
           for (std::uint32_t b = 0; b < banks_; ++b)
-            up(bank_[b][e.next], now + (b == bank ? e.own : e.other));
+            up(bank_[b][e.next], now + (b == bank                   ? e.own
+                                        : group_[b] == group_[bank] ? e.group
+                                                                    : e.other));
           break;
       }
     }
@@ -114,17 +138,23 @@ class NotBefore {
   // so they raise one rank-wide cycle instead of one per bank.
   enum class Kind : std::uint8_t {
     kRank,       // the later command is PREA or REF: own is its delay
-    kEveryBank,  // every bank, own = other
+    kEveryBank,  // every bank, own = group = other
     kOwnBank,    // the issuing bank only (own)
-    kPerBank,    // own to the issuing bank, other to the rest (either may be kNone)
+    kPerBank,    // own to the issuing bank, group to the rest of its bank
+                 // group, other to the other groups (any may be kNone)
   };
   struct Entry {
     Kind kind;
     std::size_t next;  // the later command
-    Cycle own, other;
+    Cycle own, group, other;
   };
 
   std::uint32_t banks_;
+  std::vector<std::uint32_t> group_;  // [bank] its bank group
+  Cycle faw_ = 0;                     // tFAW; 0: no four-activate window
+  // The last four ACTs' cycles, a ring: activates_[oldest_] is the 4th-last.
+  std::array<Cycle, ConstraintTable::kActivatesPerWindow> activates_{};
+  std::size_t oldest_ = 0;
   std::array<std::vector<Entry>, kCommandCount> after_;  // by previous command
   std::vector<std::array<Cycle, kCommandCount>> bank_;   // [bank][command]
   std::array<Cycle, kCommandCount> every_{};             // [command], every bank

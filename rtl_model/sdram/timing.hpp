@@ -23,7 +23,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +34,36 @@
 #include "rtl_model/sim/clock.hpp"
 
 namespace voxcast::rtl::sdram {
+
+// A DDR4 minimum as JESD79-4B gives it: max(ck clocks, ns nanoseconds) (the
+// speed-bin and timing-parameter tables, e.g. tRRD_S = max(4nCK, 3.3ns)).
+// ck = 0: nanoseconds only; ns = 0: clocks only.
+struct ClocksOrNs {
+  int ck = 0;
+  double ns = 0;
+};
+
+// The parameters DDR4 adds to an SDR grade (JESD79-4B): bank groups make
+// column-to-column, activate-to-activate and write-to-read delays depend on
+// whether the two commands address the same bank group (_L) or another (_S);
+// tFAW bounds any four activates; writes have a latency CWL; reads close a
+// row tRTP after the READ.
+struct Ddr4Ns {
+  int cwl = 0;        // CAS write latency, clocks (MR2; AL = 0, no CRC, 1tCK preambles)
+  ClocksOrNs tRRD_S;  // ACT to ACT, other bank group
+  ClocksOrNs tRRD_L;  // ACT to ACT, same bank group
+  ClocksOrNs tFAW;    // four-activate window: a fifth ACT at least tFAW after the 4th-last
+  ClocksOrNs tCCD_S;  // column to column, other bank group
+  ClocksOrNs tCCD_L;  // column to column, same bank group
+  ClocksOrNs tWTR_S;  // end of write data to READ, other bank group
+  ClocksOrNs tWTR_L;  // end of write data to READ, same bank group
+  ClocksOrNs tRTP;    // READ to PRECHARGE
+};
+
+// Which JEDEC standard a grade follows: its command timing rules differ.
+enum class Standard : std::uint8_t { kSdr, kDdr4 };
+
+std::string_view name(Standard s);
 
 // One speed grade of one SDRAM component, in the datasheet's units. Minimum
 // values unless named _max.
@@ -54,7 +86,11 @@ struct TimingNs {
   int tCCD_ck = 0;         // READ/WRITE to READ/WRITE, clocks
   int tCDL_ck = 0;         // last data-in to new READ/WRITE, clocks
   int tMRD_ck = 0;         // LOAD MODE REGISTER to command; listed, not modelled
+  // Set for a DDR4 grade (tRRD_ns, tCCD_ck and tCDL_ck are then unused: the
+  // bank-group pairs here replace them); empty for SDR SDRAM.
+  std::optional<Ddr4Ns> ddr4;
 
+  Standard standard() const { return ddr4 ? Standard::kDdr4 : Standard::kSdr; }
   // Average refresh interval: tREF / refresh_count (15.625 us for 64 ms / 4096).
   double tREFI_ns() const;
 };
@@ -71,12 +107,28 @@ TimingNs pc100_cl2();
 TimingNs pc100_cl3();
 // Micron MT48LC8M16A2-75 at CL3, 133 MHz (PC133 3-3-3).
 TimingNs pc133_cl3();
+// The SDR grades above.
 std::vector<TimingNs> all();
+// DDR4-2400 17-17-17 (tAA = tRCD = tRP = 14.16 ns) of Micron MT40A2G4 (8Gb
+// x4, 1/2 KB page), the components of the Alveo U250's module MTA18ASF2G72PZ-2G3;
+// each number's source (JESD79-4B, Micron, and DRAMsim3's / Ramulator 2's
+// DDR4 presets as the check) is in `source` and docs/sdram.md "DDR4".
+TimingNs ddr4_2400_cl17();
+// The same speed grade on x8 components (1 KB page): only tFAW differs
+// (max(20nCK, 21ns) instead of max(16nCK, 13ns)), so four activates are
+// limited by tFAW, not by 4 tRRD_S: the tests' tFAW case.
+TimingNs ddr4_2400_cl17_x8();
 }  // namespace presets
 
 enum class Rounding {
   kUpForMinimum,    // minimum delays: ceil (the datasheet's rule)
   kDownForMaximum,  // maximum intervals (tREFI, tRAS(max)): floor
+  // DDR4 minimum delays: JEDEC's rounding algorithm with its 2.5 % guard
+  // band, nCK = floor((ps * 1000 / tCK_ps + 974) / 1000) in integers (JEDEC
+  // DDR4 SPD, Annex L "Rounding algorithms"; Ramulator 2's JEDEC_rounding):
+  // tCK is given truncated to 0.833 ns for 1200 MHz, so a plain ceil would
+  // make 5 ns (tCCD_L) 7 clocks instead of the 6 every DDR4-2400 table lists.
+  kJedecGuardBand,
 };
 
 // THE one conversion from datasheet nanoseconds to cycles of `clock`. The
@@ -101,6 +153,18 @@ struct TimingCycles {
   Cycle tREFI;  // rounded down
   Cycle tCCD;
   Cycle tCDL;
+  // DDR4 (zero for SDR): CAS write latency and the bank-group pairs.
+  Standard standard = Standard::kSdr;
+  Cycle CWL = 0;
+  Cycle tRRD_S = 0, tRRD_L = 0;
+  Cycle tFAW = 0;
+  Cycle tCCD_S = 0, tCCD_L = 0;
+  Cycle tWTR_S = 0, tWTR_L = 0;
+  Cycle tRTP = 0;
+
+  // Clocks one burst holds the data bus: BL for SDR, BL/2 for DDR (two beats
+  // a clock: BL8 is 4 clocks).
+  Cycle burst_cycles() const { return standard == Standard::kDdr4 ? BL / 2 : BL; }
 
   // Derived delays (Micron 128Mb SDRAM data sheet, Rev. E, READ/WRITE/
   // PRECHARGE operation and the AC functional characteristics table):
@@ -123,11 +187,29 @@ struct TimingCycles {
   Cycle read_to_write() const;
   // READ after WRITE: tCDL after the last data-in: BL - 1 + tCDL.
   Cycle write_to_read() const;
+
+  // DDR4 (JESD79-4B, the READ/WRITE operation chapters and the timing-
+  // parameter table; AL = 0, 1tCK preambles):
+  //   read_to_precharge()  tRTP (max(4nCK, 7.5ns) already in tRTP)
+  //   write_to_precharge() CWL + BL/2 + tWR: tWR counts from the end of the
+  //                        write burst
+  //   read_to_write()      CL + BL/2 + 2 - CWL: the read burst, a turn-around
+  //                        clock and the write preamble before the write data
+  // and by bank group:
+  //   column to column     max(tCCD_L, BL/2) / max(tCCD_S, BL/2)
+  //   write to read        CWL + BL/2 + tWTR_L / tWTR_S: tWTR from the end
+  //                        of the write burst
+  Cycle column_to_column_same_group() const;
+  Cycle column_to_column_other_group() const;
+  Cycle write_to_read_same_group() const;
+  Cycle write_to_read_other_group() const;
 };
 
 // Throws voxcast::Error when the clock is faster than the grade allows at its
 // CAS latency (tCK < tCK(CL)), when the burst length is not 1, 2, 4 or 8
-// (full-page bursts are not modelled) or a parameter is inconsistent.
+// (full-page bursts are not modelled; DDR4: not 8, BL8 fixed), or a
+// parameter is inconsistent. SDR: every ns through kUpForMinimum; DDR4:
+// through kJedecGuardBand, max(clocks, rounded ns) for the ClocksOrNs pairs.
 TimingCycles to_cycles(const TimingNs& timing, const sim::ClockDomain& clock, int burst_length);
 
 std::ostream& operator<<(std::ostream& os, const TimingCycles& t);
@@ -138,6 +220,11 @@ enum class Scope : std::uint8_t {
   kOtherBank,  // to different banks of the rank
   kAnyBank,    // any bank of the rank (shared data or command resources), or
                // a rank command (PREA, REF) on either side
+  // DDR4 bank groups (JESD79-4B: 4 groups of 4 banks in 8Gb x4/x8): a bank of the later command's
+  // bank group, the bank itself included (a same-bank row may bind harder), and a bank of another
+  // group. Together they cover every bank, as kAnyBank does.
+  kSameBankGroup,
+  kOtherBankGroup,
 };
 
 std::string_view name(Scope s);
@@ -155,12 +242,19 @@ std::ostream& operator<<(std::ostream& os, const Constraint& c);
 
 class ConstraintTable {
  public:
-  // The SDR SDRAM table (docs/sdram.md §3) from the converted parameters.
-  // Throws voxcast::Error if the table is inconsistent (a rank command with a
-  // bank scope, or a pair with both a bank scope and kAnyBank).
+  // The table of the timing's standard from the converted parameters: SDR
+  // SDRAM (docs/sdram.md §3) or DDR4 (docs/sdram.md "DDR4"). Throws
+  // voxcast::Error if the table is inconsistent (a rank command with a bank
+  // scope, or a pair with both a bank scope and kAnyBank).
   explicit ConstraintTable(const TimingCycles& timing);
 
   const std::vector<Constraint>& rows() const { return rows_; }
+  // DDR4's four-activate window, which is not a pairwise row: an ACT at
+  // least `cycles` (tFAW) after the 4th-last ACT to any bank. Given as
+  // ACT -> ACT, any bank; nullptr for SDR SDRAM.
+  const Constraint* four_activate_window() const { return faw_ ? &*faw_ : nullptr; }
+  // ACTs in the window: the fifth in any tFAW is illegal.
+  static constexpr std::size_t kActivatesPerWindow = 4;
   // Indices into rows() of the constraints whose later command is `next`.
   const std::vector<std::size_t>& rows_before(Command next) const {
     return by_next_[index_of(next)];
@@ -168,8 +262,11 @@ class ConstraintTable {
 
  private:
   void validate() const;
+  void sdr_rows(const TimingCycles& t);
+  void ddr4_rows(const TimingCycles& t);
 
   std::vector<Constraint> rows_;
+  std::optional<Constraint> faw_;
   std::vector<std::vector<std::size_t>> by_next_;
 };
 

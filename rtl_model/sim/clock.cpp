@@ -67,6 +67,7 @@ std::ostream& operator<<(std::ostream& os, const ClockDomain& clock) {
 namespace clocks {
 ClockDomain pc100() { return ClockDomain("sdram-pc100", 10'000); }
 ClockDomain pc133() { return ClockDomain("sdram-pc133", 7'500); }
+ClockDomain ddr4_2400() { return ClockDomain("ddr4-2400", 833); }
 ClockDomain pci33() { return ClockDomain("pci33", 30'000); }
 }  // namespace clocks
 

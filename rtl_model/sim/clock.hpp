@@ -77,6 +77,11 @@ namespace clocks {
 ClockDomain pc100();
 // 7.5 ns (133.33 MHz): PC133 (Micron 128Mb SDRAM -75, tCK(3) = 7.5 ns).
 ClockDomain pc133();
+// 0.833 ns (1200 MHz): DDR4-2400's command clock, tCK(avg) as JESD79-4B lists
+// it (truncated to the ps; the exact 5/6 ns is not a whole number of ps, and
+// JEDEC's rounding of DDR4 delays, sdram::Rounding::kJedecGuardBand, is made
+// for this truncation).
+ClockDomain ddr4_2400();
 // 30 ns (33.33 MHz): 33 MHz PCI (PCI Local Bus Specification 2.2, §4.2.3.1:
 // Tcyc(min) = 30 ns), 32 bits wide on the VIZARD II card.
 ClockDomain pci33();

@@ -75,6 +75,9 @@ std::vector<Banks> banks_for(const Constraint& c) {
       return {{1, 2}};
     case Scope::kAnyBank:
       return {{1, 1}, {1, 2}};
+    case Scope::kSameBankGroup:  // DDR4 only (tests/rtl/test_sdram_ddr4.cpp)
+    case Scope::kOtherBankGroup:
+      return {};
   }
   return {};
 }
