@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cosim/engines/engines.hpp"
 #include "cosim/reports/files.hpp"
@@ -18,8 +17,11 @@
 #include "refmodel/error.hpp"
 #include "refmodel/parallel.hpp"
 #include "refmodel/render/raycaster.hpp"
+#include "rtl_model/board/board.hpp"
+#include "rtl_model/board/board_config.hpp"
 #include "rtl_model/pipeline/config.hpp"
 #include "rtl_model/scene_config.hpp"
+#include "rtl_model/trace/request_trace.hpp"
 
 namespace voxcast::cosim {
 
@@ -155,6 +157,106 @@ BurstLayoutResult summarize(const BurstCounter& counter) {
   return r;
 }
 
+// The board's channel must be the memory the layouts were laid out in.
+void check_channel_matches(const rtl::sdram::DimmConfig& dimm, const rtl::layout::BurstMemory& m,
+                           const std::string& board) {
+  const rtl::sdram::Geometry& g = dimm.geometry;
+  const bool same = g.bank_groups == rtl::layout::kBankGroups &&
+                    g.banks_per_group() == static_cast<std::uint32_t>(m.banks_per_group) &&
+                    g.columns == m.columns && g.rows >= m.rows &&
+                    static_cast<int>(g.bytes_per_beat()) * dimm.burst_length == m.burst_bytes;
+  if (!same)
+    throw Error("burst study: board " + board +
+                "'s memory is not the DDR4 channel the layouts "
+                "assume (4 bank groups of " +
+                std::to_string(m.banks_per_group) + " banks, " + std::to_string(m.columns) +
+                " columns, " + std::to_string(m.burst_bytes) + "-byte bursts)");
+}
+
+// The layout's fetches under one reuse scheme through the board's four
+// channels, for each number of pipelines (BurstStudyOptions::channel_layout).
+ChannelRunResult run_channels(const BurstLayout& layout, const std::vector<std::uint32_t>& cells,
+                              const BurstStudyOptions& options, int threads) {
+  const rtl::board::Board board = rtl::board::load_board(options.board);
+  const rtl::sdram::DimmConfig dimm = rtl::channel_config_for_board(board);
+  check_channel_matches(dimm, layout.memory(), options.board);
+  const rtl::trace::AddressMapping mapping(dimm.geometry, dimm.burst_length);
+  BurstCounter counter(layout, options.cache_lines);
+  std::vector<rtl::layout::Fetch> fetches;
+  counter.record(options.channel_reuse, &fetches);
+  count(counter, cells);
+
+  ChannelRunResult out;
+  out.layout = layout.name();
+  out.reuse = rtl::layout::name(options.channel_reuse);
+  out.board = board.name;
+  out.timing = dimm.timing.name;
+  out.memory_mhz = dimm.clock.frequency_mhz();
+  out.core_mhz = options.core_mhz;
+  out.queue_depth = options.queue_depth;
+  out.requests = fetches.size();
+  const auto samples = static_cast<double>(counter.samples());
+  const std::size_t n = options.pipelines.size();
+  std::vector<rtl::trace::TraceRunResult> runs(n * rtl::layout::kBurstChannels);
+  ref::parallel_for(
+      static_cast<int>(runs.size()),
+      [&](int job) {
+        const auto j = static_cast<std::size_t>(job);
+        const int pipes = options.pipelines[j / rtl::layout::kBurstChannels];
+        const int channel = static_cast<int>(j % rtl::layout::kBurstChannels);
+        // Sample k leaves the pipelines at core clock k / N: memory clock
+        // k x f_mem / (N x f_core).
+        const double per_sample = out.memory_mhz / (pipes * options.core_mhz);
+        std::vector<rtl::trace::TraceRequest> trace;
+        for (const rtl::layout::Fetch& f : fetches) {
+          if (f.burst.channel != channel) continue;
+          rtl::sdram::Address a;
+          a.bank =
+              static_cast<std::uint32_t>(f.burst.bank_group) * dimm.geometry.banks_per_group() +
+              static_cast<std::uint32_t>(f.burst.bank);
+          a.row = f.burst.row;
+          a.column = f.burst.column;
+          rtl::trace::TraceRequest t;
+          t.address = mapping.byte_address(a);
+          t.cycle = static_cast<rtl::sdram::Cycle>(static_cast<double>(f.sample) * per_sample);
+          trace.push_back(t);
+        }
+        runs[j] = rtl::trace::run_request_trace(
+            dimm, trace, mapping, {.scheduler = "fr-fcfs", .queue_depth = options.queue_depth});
+      },
+      threads);
+  for (std::size_t p = 0; p < n; ++p) {
+    ChannelRunPoint pt;
+    pt.pipelines = options.pipelines[p];
+    pt.pipeline_us = samples / (pt.pipelines * options.core_mhz);
+    std::uint64_t bytes = 0, hits = 0, requests = 0;
+    const rtl::trace::TraceRunResult* busiest = nullptr;
+    for (int c = 0; c < rtl::layout::kBurstChannels; ++c) {
+      const rtl::trace::TraceRunResult& run =
+          runs[p * rtl::layout::kBurstChannels + static_cast<std::size_t>(c)];
+      const double us = static_cast<double>(run.cycles) * run.clock_ns / 1000.0;
+      if (!busiest || us > pt.memory_us) {
+        pt.memory_us = us;
+        busiest = &run;
+      }
+      bytes += run.bytes;
+      hits += run.row_hits;
+      requests += run.requests;
+      pt.refreshes += run.refreshes;
+    }
+    pt.frame_us = std::max(pt.memory_us, pt.pipeline_us);
+    pt.gsamples = pt.frame_us > 0 ? samples / (pt.frame_us * 1e3) : 0.0;
+    pt.ns_per_sample = samples > 0 ? pt.frame_us * 1e3 / samples : 0.0;
+    pt.bandwidth_gbs = pt.frame_us > 0 ? static_cast<double>(bytes) / (pt.frame_us * 1e3) : 0.0;
+    pt.row_hits = requests ? static_cast<double>(hits) / static_cast<double>(requests) : 0.0;
+    pt.latency_mean_ns = busiest->latency_mean * busiest->clock_ns;
+    pt.latency_p99_ns = static_cast<double>(busiest->latency_p99) * busiest->clock_ns;
+    pt.bound = pt.memory_us > 1.02 * pt.pipeline_us ? "memory" : "pipelines";
+    out.points.push_back(pt);
+  }
+  return out;
+}
+
 }  // namespace
 
 BurstStudyResult run_burst_study(const ref::Scene& scene, const BurstStudyOptions& options) {
@@ -202,9 +304,51 @@ BurstStudyResult run_burst_study(const ref::Scene& scene, const BurstStudyOption
         r.layouts[li] = summarize(counters[li]);
       },
       scene.render.threads);
+  if (!options.channel_layout.empty()) {
+    const BurstLayout* chosen = nullptr;
+    for (const auto& layout : layouts)
+      if (layout->name() == options.channel_layout) chosen = layout.get();
+    if (!chosen) {
+      std::string names;
+      for (const auto& layout : layouts) names += (names.empty() ? "" : ", ") + layout->name();
+      throw Error("burst study: no layout " + options.channel_layout + " (the layouts: " + names +
+                  ")");
+    }
+    r.channel_run = run_channels(*chosen, stream.cells, options, scene.render.threads);
+    r.has_channel_run = true;
+  }
   if (!options.json.empty()) write_burst_study_json(options.json, r);
   return r;
 }
+
+namespace {
+
+void print_channel_run(std::ostream& os, const ChannelRunResult& c) {
+  os << "\nchannel run  " << c.layout << ", " << c.reuse << " reuse, through the " << c.board
+     << " board's four " << c.timing << " channels at " << fixed_text(c.memory_mhz, 0)
+     << " MHz (FR-FCFS, queue " << c.queue_depth << ", open page, refresh); " << c.requests
+     << " bursts; pipelines at " << fixed_text(c.core_mhz, 0) << " MHz, a sample a clock each\n"
+     << "pipelines  frame us  G samples/s  ns/sample  pipelines us  memory us  GB/s   row hits  "
+        "latency mean/p99 ns  REF  bound\n";
+  for (const ChannelRunPoint& p : c.points) {
+    auto col = [&os](const std::string& text, std::size_t width) {
+      os << text << std::string(width > text.size() ? width - text.size() : 1, ' ');
+    };
+    col(std::to_string(p.pipelines), 11);
+    col(fixed_text(p.frame_us, 1), 10);
+    col(fixed_text(p.gsamples, 3), 13);
+    col(fixed_text(p.ns_per_sample, 3), 11);
+    col(fixed_text(p.pipeline_us, 1), 14);
+    col(fixed_text(p.memory_us, 1), 11);
+    col(fixed_text(p.bandwidth_gbs, 1), 7);
+    col(fixed_text(100.0 * p.row_hits, 1) + "%", 10);
+    col(fixed_text(p.latency_mean_ns, 0) + "/" + fixed_text(p.latency_p99_ns, 0), 21);
+    col(std::to_string(p.refreshes), 5);
+    os << p.bound << "\n";
+  }
+}
+
+}  // namespace
 
 void print_burst_study(std::ostream& os, const BurstStudyResult& r) {
   const char* axis = "xyz";
@@ -240,6 +384,7 @@ void print_burst_study(std::ostream& os, const BurstStudyResult& r) {
     }
     os << (i == best ? " <- most samples/s with ray reuse" : "") << "\n";
   }
+  if (r.has_channel_run) print_channel_run(os, r.channel_run);
 }
 
 void write_burst_study_json(const std::string& path, const BurstStudyResult& r) {
@@ -274,6 +419,27 @@ void write_burst_study_json(const std::string& path, const BurstStudyResult& r) 
     layouts.push_back(e);
   }
   j["layouts"] = layouts;
+  if (r.has_channel_run) {
+    const ChannelRunResult& c = r.channel_run;
+    nlohmann::json points = nlohmann::json::array();
+    for (const ChannelRunPoint& p : c.points)
+      points.push_back({{"pipelines", p.pipelines},
+                        {"frame_us", p.frame_us},
+                        {"gsamples_per_second", p.gsamples},
+                        {"ns_per_sample", p.ns_per_sample},
+                        {"pipeline_us", p.pipeline_us},
+                        {"memory_us", p.memory_us},
+                        {"bandwidth_gbs", p.bandwidth_gbs},
+                        {"row_hits", p.row_hits},
+                        {"latency_mean_ns", p.latency_mean_ns},
+                        {"latency_p99_ns", p.latency_p99_ns},
+                        {"refreshes", p.refreshes},
+                        {"bound", p.bound}});
+    j["channel_run"] = {
+        {"layout", c.layout},           {"reuse", c.reuse},           {"board", c.board},
+        {"timing", c.timing},           {"memory_mhz", c.memory_mhz}, {"core_mhz", c.core_mhz},
+        {"queue_depth", c.queue_depth}, {"requests", c.requests},     {"points", points}};
+  }
   write_json_file(path, j);
 }
 

@@ -251,6 +251,7 @@ void BurstCounter::fetch(Reuse r, const BurstAddress& b) {
   }
   o.open[bank] = true;
   o.row[bank] = b.row;
+  if (recorder_[ri]) recorder_[ri]->push_back(Fetch{samples_ - 1, b});
 }
 
 void BurstCounter::sample(const std::array<int, 3>& i0) {

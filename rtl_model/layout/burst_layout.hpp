@@ -155,6 +155,13 @@ struct ReuseLoad {
   std::uint64_t bound_clocks() const;
 };
 
+// A burst one reuse scheme fetched, and the sample (its place in the stream,
+// from 0) that needed it: what a channel's request trace is made of.
+struct Fetch {
+  std::uint64_t sample = 0;
+  BurstAddress burst;
+};
+
 class BurstCounter {
  public:
   // `cache_lines`: lines per channel of the direct-mapped brick cache (a power
@@ -172,6 +179,8 @@ class BurstCounter {
   const BurstLayout& layout() const { return layout_; }
   // Samples per second the busiest channel's data bus allows under `r`.
   double bound_samples_per_second(Reuse r) const;
+  // Appends every fetch under `r` from now on to *out (null: stop).
+  void record(Reuse r, std::vector<Fetch>* out) { recorder_[static_cast<std::size_t>(r)] = out; }
 
  private:
   struct Open {
@@ -193,6 +202,7 @@ class BurstCounter {
   int prev_count_ = 0;
   // Cache reuse: per channel, the brick index held by each line (+1; 0 empty).
   std::array<std::vector<std::uint64_t>, kBurstChannels> cache_;
+  std::array<std::vector<Fetch>*, 3> recorder_{};
 };
 
 }  // namespace voxcast::rtl::layout

@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <vector>
 
 #include "refmodel/error.hpp"
 #include "rtl_model/layout/burst_layout.hpp"
@@ -219,6 +220,23 @@ TEST(BurstCounter, RowCubesKeepAZRayInItsRows) {
     EXPECT_EQ(b.row_misses, 8u);
     EXPECT_EQ(b.row_hits, per - 8);
     EXPECT_EQ(b.row_conflicts, 0u);
+  }
+}
+
+TEST(BurstCounter, RecordsEachFetchWithTheSampleThatNeededIt) {
+  // The z ray on 4x2x2: sample 0 fetches brick 0; sample k (odd) crosses into
+  // brick (k + 1) / 2 and fetches it; even samples fetch nothing.
+  const int n = 64;
+  const BurstLayout layout({8, 8, n}, {4, 2, 2}, 16, BankGroupMap::kSkewed);
+  BurstCounter c(layout, 1024);
+  std::vector<Fetch> fetched;
+  c.record(Reuse::kRay, &fetched);
+  c.begin_ray();
+  for (int k = 0; k + 1 < n; ++k) c.sample({0, 0, k});
+  ASSERT_EQ(fetched.size(), static_cast<std::size_t>(n / 2));
+  for (std::size_t j = 0; j < fetched.size(); ++j) {
+    EXPECT_EQ(fetched[j].sample, j == 0 ? 0u : 2 * j - 1);
+    EXPECT_EQ(fetched[j].burst, layout.burst_of({0, 0, static_cast<int>(2 * j)}));
   }
 }
 
