@@ -247,9 +247,9 @@ TraceRunResult run_request_trace(const sdram::DimmConfig& dimm,
   Cycle now = trace.empty() ? 0 : trace.front().cycle;
   while (next < trace.size() || !ctl.idle()) {
     while (next < trace.size() && trace[next].cycle <= now && ctl.ready()) {
-      const TraceRequest& t = trace[next];
+      const TraceRequest& req = trace[next];
       ctl.push(sdram::Request{
-          .id = next, .kind = t.kind, .address = mapping.map(t.address), .arrival = now});
+          .id = next, .kind = req.kind, .address = mapping.map(req.address), .arrival = now});
       ++next;
     }
     ctl.tick(now);
