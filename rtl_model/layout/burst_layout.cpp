@@ -184,21 +184,9 @@ const char* name(Reuse r) {
   return "?";
 }
 
-std::uint64_t ReuseLoad::bursts() const {
+std::uint64_t ReuseLoad::total(std::uint64_t ChannelLoad::*field) const {
   std::uint64_t n = 0;
-  for (const ChannelLoad& c : channel) n += c.bursts;
-  return n;
-}
-
-std::uint64_t ReuseLoad::same_group() const {
-  std::uint64_t n = 0;
-  for (const ChannelLoad& c : channel) n += c.same_group;
-  return n;
-}
-
-std::uint64_t ReuseLoad::row_hits() const {
-  std::uint64_t n = 0;
-  for (const ChannelLoad& c : channel) n += c.row_hits;
+  for (const ChannelLoad& c : channel) n += c.*field;
   return n;
 }
 

@@ -148,9 +148,11 @@ struct ChannelLoad {
 
 struct ReuseLoad {
   std::array<ChannelLoad, kBurstChannels> channel{};
-  std::uint64_t bursts() const;
-  std::uint64_t same_group() const;
-  std::uint64_t row_hits() const;
+  // A field summed over the channels.
+  std::uint64_t total(std::uint64_t ChannelLoad::*field) const;
+  std::uint64_t bursts() const { return total(&ChannelLoad::bursts); }
+  std::uint64_t same_group() const { return total(&ChannelLoad::same_group); }
+  std::uint64_t row_hits() const { return total(&ChannelLoad::row_hits); }
   // The busiest channel's data-bus clocks: the frame's bound.
   std::uint64_t bound_clocks() const;
 };

@@ -15,7 +15,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -23,6 +22,7 @@
 
 #include "refmodel/error.hpp"
 #include "rtl_model/sdram/dimm.hpp"
+#include "sdram_sequences.hpp"
 
 namespace VOXCAST_UNITY_ID {
 
@@ -319,28 +319,11 @@ TEST(Ddr4Constraints, CompiledEarliestEqualsTheTableScan) {
   for (const TimingNs& preset : {presets::ddr4_2400_cl17(), presets::ddr4_2400_cl17_x8()}) {
     SCOPED_TRACE(preset.name);
     Dimm dimm(ddr4_config(preset));
-    std::mt19937 rng(23);
     const std::array kinds{Command::kAct, Command::kAct, Command::kRd,   Command::kWr,
                            Command::kRda, Command::kPre, Command::kPrea, Command::kRef};
     const std::array checked{Command::kAct, Command::kRd,   Command::kWr, Command::kRda,
                              Command::kPre, Command::kPrea, Command::kRef};
-    std::uint64_t issued = 0;
-    for (Cycle now = 0; now < 2500; ++now) {
-      for (Command c : checked)
-        for (std::uint32_t b = 0; b < dimm.bank_count(); ++b)
-          ASSERT_EQ(dimm.earliest(c, b, now), dimm.gate(c, b, now).earliest)
-              << c << " bank " << b << " at " << now;
-      const Command c = kinds[rng() % kinds.size()];
-      const std::uint32_t bank = static_cast<std::uint32_t>(rng() % dimm.bank_count());
-      const std::uint32_t row = dimm.bank(bank).state == BankState::kActive
-                                    ? dimm.bank(bank).open_row
-                                    : static_cast<std::uint32_t>(rng() % 8);
-      const Address a{bank, row, static_cast<std::uint32_t>(rng() % 64)};
-      if (dimm.can_issue(c, a, now)) {
-        dimm.issue(c, a, now);
-        ++issued;
-      }
-    }
+    const std::uint64_t issued = test_sequences::run_random_sequence(dimm, kinds, checked, 2500, 23);
     EXPECT_GT(issued, 300u);
     EXPECT_GT(dimm.stats().total().activates, 100u);
     EXPECT_GT(dimm.stats().total().writes, 20u);

@@ -13,7 +13,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -21,6 +20,7 @@
 
 #include "refmodel/error.hpp"
 #include "rtl_model/sdram/dimm.hpp"
+#include "sdram_sequences.hpp"
 
 namespace VOXCAST_UNITY_ID {
 
@@ -355,26 +355,9 @@ TEST(DimmConstraints, CompiledEarliestEqualsTheTableScan) {
     config.timing = grade;
     config.burst_length = 2;
     Dimm dimm(config);
-    std::mt19937 rng(11);
     const std::array kinds{Command::kAct, Command::kRd,   Command::kWr,
                            Command::kPre, Command::kPrea, Command::kRef};
-    std::uint64_t issued = 0;
-    for (Cycle now = 0; now < 3000; ++now) {
-      for (Command c : kinds)
-        for (std::uint32_t b = 0; b < dimm.bank_count(); ++b)
-          ASSERT_EQ(dimm.earliest(c, b, now), dimm.gate(c, b, now).earliest)
-              << c << " bank " << b << " at " << now;
-      const Command c = kinds[rng() % kinds.size()];
-      const std::uint32_t bank = static_cast<std::uint32_t>(rng() % dimm.bank_count());
-      const std::uint32_t row = dimm.bank(bank).state == BankState::kActive
-                                    ? dimm.bank(bank).open_row
-                                    : static_cast<std::uint32_t>(rng() % 8);
-      const Address a{bank, row, static_cast<std::uint32_t>(rng() % 64)};
-      if (dimm.can_issue(c, a, now)) {
-        dimm.issue(c, a, now);
-        ++issued;
-      }
-    }
+    const std::uint64_t issued = test_sequences::run_random_sequence(dimm, kinds, kinds, 3000, 11);
     EXPECT_GT(issued, 500u);
     EXPECT_GE(dimm.stats().refreshes, 1u);
     EXPECT_GT(dimm.stats().total().writes, 50u);
