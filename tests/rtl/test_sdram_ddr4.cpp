@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "dimm_checks.hpp"
 #include "refmodel/error.hpp"
 #include "rtl_model/sdram/dimm.hpp"
-#include "sdram_sequences.hpp"
 
 namespace VOXCAST_UNITY_ID {
 
@@ -126,10 +126,8 @@ TEST(Ddr4Timing, RefusesWhatItCannotModel) {
 // Bank 5 is in group 1 (banks 4-7); bank 6 shares its group, bank 9 does not.
 constexpr std::uint32_t kPrevBank = 5, kSameGroupBank = 6, kOtherGroupBank = 9;
 
-struct Banks {
-  std::uint32_t prev;
-  std::uint32_t next;
-};
+using dimm_checks::at;
+using dimm_checks::Banks;
 
 bool has_same_bank_row(const ConstraintTable& table, const Constraint& c) {
   for (const Constraint& d : table.rows())
@@ -167,47 +165,6 @@ std::vector<Banks> banks_for(const ConstraintTable& table, const Constraint& c) 
   return out;
 }
 
-Address at(std::uint32_t bank, std::uint32_t column = 0) { return {bank, 10 + bank, column}; }
-
-// As tests/rtl/test_sdram_dimm.cpp: the set-up ACTs, `c.prev` at cycle 300
-// (long after them: tRC, tFAW and tRAS are over), then `c.next` one cycle
-// early and on time.
-void check_constraint(const DimmConfig& cfg, const Constraint& c, Banks b) {
-  Dimm d(cfg);
-  std::set<std::uint32_t> open;
-  if (is_column_command(c.prev) || c.prev == Command::kPre || c.prev == Command::kPrea)
-    open.insert(b.prev);
-  const bool prev_opens_it = c.prev == Command::kAct && b.next == b.prev;
-  if (is_column_command(c.next) && !prev_opens_it) open.insert(b.next);
-  Cycle now = 1;
-  for (std::uint32_t bank : open) {
-    d.issue(Command::kAct, at(bank), now);
-    now += 20;
-  }
-  const Cycle t0 = 300;
-  d.issue(c.prev, at(b.prev), t0);
-  if (c.next == Command::kAct && d.bank(b.next).state == BankState::kActive)
-    d.issue(Command::kPre, at(b.next), d.earliest(Command::kPre, b.next, t0 + 1));
-
-  const Cycle bound = t0 + c.cycles;
-  EXPECT_EQ(d.earliest(c.next, b.next, bound - 1), bound);
-  EXPECT_EQ(d.gate(c.next, b.next, bound - 1).earliest, bound);
-  EXPECT_FALSE(d.can_issue(c.next, at(b.next), bound - 1));
-  if (bound - 1 > d.last_command_cycle()) {
-    const std::optional<std::string> why = d.violation(c.next, at(b.next), bound - 1);
-    ASSERT_TRUE(why.has_value());
-    EXPECT_NE(why->find("violates " + std::string(c.parameter)), std::string::npos) << *why;
-    try {
-      d.issue(c.next, at(b.next), bound - 1);
-      ADD_FAILURE() << "issue one cycle early did not throw";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(c.parameter), std::string::npos) << e.what();
-    }
-  }
-  EXPECT_TRUE(d.can_issue(c.next, at(b.next), bound));
-  EXPECT_NO_THROW(d.issue(c.next, at(b.next), bound));
-}
-
 TEST(Ddr4Constraints, EveryRowIllegalOneCycleEarlyAndLegalOnTime) {
   std::size_t checked = 0;
   for (const TimingNs& preset : {presets::ddr4_2400_cl17(), presets::ddr4_2400_cl17_x8()}) {
@@ -218,7 +175,8 @@ TEST(Ddr4Constraints, EveryRowIllegalOneCycleEarlyAndLegalOnTime) {
         std::ostringstream trace;
         trace << preset.name << ": " << c << ", banks " << b.prev << " -> " << b.next;
         SCOPED_TRACE(trace.str());
-        check_constraint(cfg, c, b);
+        // ACTs 20 cycles apart, `c.prev` at 300: tRC, tFAW and tRAS are over.
+        dimm_checks::check_constraint(cfg, c, b, {.spacing = 20, .t0 = 300});
         ++checked;
       }
     }
@@ -323,7 +281,7 @@ TEST(Ddr4Constraints, CompiledEarliestEqualsTheTableScan) {
                            Command::kRda, Command::kPre, Command::kPrea, Command::kRef};
     const std::array checked{Command::kAct, Command::kRd,   Command::kWr, Command::kRda,
                              Command::kPre, Command::kPrea, Command::kRef};
-    const std::uint64_t issued = test_sequences::run_random_sequence(dimm, kinds, checked, 2500, 23);
+    const std::uint64_t issued = dimm_checks::run_random_sequence(dimm, kinds, checked, 2500, 23);
     EXPECT_GT(issued, 300u);
     EXPECT_GT(dimm.stats().total().activates, 100u);
     EXPECT_GT(dimm.stats().total().writes, 20u);

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "dimm_checks.hpp"
 #include "refmodel/error.hpp"
 #include "rtl_model/sdram/dimm.hpp"
-#include "sdram_sequences.hpp"
 
 namespace VOXCAST_UNITY_ID {
 
@@ -47,8 +47,8 @@ DimmConfig config(const Grade& g, int burst_length) {
   return c;
 }
 
-// Each bank gets its own row so a wrong-row access cannot pass unnoticed.
-Address at(std::uint32_t bank, std::uint32_t column = 0) { return {bank, 10 + bank, column}; }
+using dimm_checks::at;
+using dimm_checks::Banks;
 
 template <typename Fn>
 void expect_error(Fn&& fn, const std::vector<std::string>& parts) {
@@ -62,11 +62,6 @@ void expect_error(Fn&& fn, const std::vector<std::string>& parts) {
 }
 
 // ---- (a) Every constraint, generated from the table --------------------------------------
-struct Banks {
-  std::uint32_t prev;
-  std::uint32_t next;
-};
-
 std::vector<Banks> banks_for(const Constraint& c) {
   switch (c.scope) {
     case Scope::kSameBank:
@@ -82,42 +77,6 @@ std::vector<Banks> banks_for(const Constraint& c) {
   return {};
 }
 
-// Puts the DIMM in a state where `c.prev` is legal on bank b.prev and, after
-// it, `c.next` on bank b.next; issues `c.prev` at cycle 100, long after the
-// set-up commands stopped binding; then checks `c.next` one cycle early and
-// exactly on time.
-void check_constraint(const DimmConfig& cfg, const Constraint& c, Banks b) {
-  Dimm d(cfg);
-  std::set<std::uint32_t> open;
-  if (is_column_command(c.prev) || c.prev == Command::kPre || c.prev == Command::kPrea) {
-    open.insert(b.prev);
-  }
-  const bool prev_opens_it = c.prev == Command::kAct && b.next == b.prev;
-  if (is_column_command(c.next) && !prev_opens_it) open.insert(b.next);
-  Cycle now = 1;
-  for (std::uint32_t bank : open) {
-    d.issue(Command::kAct, at(bank), now);
-    now += 10;
-  }
-  const Cycle t0 = 100;
-  d.issue(c.prev, at(b.prev), t0);
-  // ACT after ACT to the same bank needs the row closed in between.
-  if (c.next == Command::kAct && d.bank(b.next).state == BankState::kActive) {
-    d.issue(Command::kPre, at(b.next), d.earliest(Command::kPre, b.next, t0 + 1));
-  }
-
-  const Cycle bound = t0 + c.cycles;
-  // Illegal one cycle early; nothing else binds later (legal on time).
-  EXPECT_EQ(d.earliest(c.next, b.next, bound - 1), bound);
-  EXPECT_FALSE(d.can_issue(c.next, at(b.next), bound - 1));
-  if (bound - 1 > d.last_command_cycle()) {
-    const std::optional<std::string> why = d.violation(c.next, at(b.next), bound - 1);
-    ASSERT_TRUE(why.has_value());
-    EXPECT_NE(why->find("violates " + std::string(c.parameter)), std::string::npos) << *why;
-  }
-  EXPECT_NO_THROW(d.issue(c.next, at(b.next), bound));
-}
-
 TEST(DimmConstraints, EveryRowIllegalOneCycleEarlyAndLegalOnTime) {
   std::size_t checked = 0;
   for (const Grade& g : grades()) {
@@ -130,7 +89,7 @@ TEST(DimmConstraints, EveryRowIllegalOneCycleEarlyAndLegalOnTime) {
           trace << g.preset.name << " BL " << bl << ": " << c << ", banks " << b.prev << " -> "
                 << b.next;
           SCOPED_TRACE(trace.str());
-          check_constraint(cfg, c, b);
+          dimm_checks::check_constraint(cfg, c, b, {.spacing = 10, .t0 = 100});
           ++checked;
         }
       }
@@ -357,7 +316,7 @@ TEST(DimmConstraints, CompiledEarliestEqualsTheTableScan) {
     Dimm dimm(config);
     const std::array kinds{Command::kAct, Command::kRd,   Command::kWr,
                            Command::kPre, Command::kPrea, Command::kRef};
-    const std::uint64_t issued = test_sequences::run_random_sequence(dimm, kinds, kinds, 3000, 11);
+    const std::uint64_t issued = dimm_checks::run_random_sequence(dimm, kinds, kinds, 3000, 11);
     EXPECT_GT(issued, 500u);
     EXPECT_GE(dimm.stats().refreshes, 1u);
     EXPECT_GT(dimm.stats().total().writes, 50u);
