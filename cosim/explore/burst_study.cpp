@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cstddef>
 #include <memory>
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cosim/engines/engines.hpp"
 #include "cosim/reports/files.hpp"
@@ -173,21 +175,33 @@ void check_channel_matches(const rtl::sdram::DimmConfig& dimm, const rtl::layout
                 " columns, " + std::to_string(m.burst_bytes) + "-byte bursts)");
 }
 
-// The layout's fetches under one reuse scheme through the board's four
-// channels, for each number of pipelines (BurstStudyOptions::channel_layout).
-ChannelRunResult run_channels(const BurstLayout& layout, const std::vector<std::uint32_t>& cells,
-                              const BurstStudyOptions& options, int threads) {
-  const rtl::board::Board board = rtl::board::load_board(options.board);
-  const rtl::sdram::DimmConfig dimm = rtl::channel_config_for_board(board);
-  check_channel_matches(dimm, layout.memory(), options.board);
+// The board whose channels the channel run drives, checked against the
+// layout's memory before any counting.
+struct Channels {
+  rtl::board::Board board;
+  rtl::sdram::DimmConfig dimm;
+};
+
+Channels load_channels(const BurstStudyOptions& options, const BurstLayout& layout) {
+  Channels c{rtl::board::load_board(options.board), {}};
+  c.dimm = rtl::channel_config_for_board(c.board);
+  check_channel_matches(c.dimm, layout.memory(), options.board);
+  return c;
+}
+
+// The layout's fetches under one reuse scheme (recorded by `counter` as it
+// counted the stream) through the board's four channels, for each number of
+// pipelines (BurstStudyOptions::channel_layout).
+ChannelRunResult run_channels(const BurstCounter& counter,
+                              const std::vector<rtl::layout::Fetch>& fetches,
+                              const Channels& channels, const BurstStudyOptions& options,
+                              int threads) {
+  const rtl::board::Board& board = channels.board;
+  const rtl::sdram::DimmConfig& dimm = channels.dimm;
   const rtl::trace::AddressMapping mapping(dimm.geometry, dimm.burst_length);
-  BurstCounter counter(layout, options.cache_lines);
-  std::vector<rtl::layout::Fetch> fetches;
-  counter.record(options.channel_reuse, &fetches);
-  count(counter, cells);
 
   ChannelRunResult out;
-  out.layout = layout.name();
+  out.layout = counter.layout().name();
   out.reuse = rtl::layout::name(options.channel_reuse);
   out.board = board.name;
   out.timing = dimm.timing.name;
@@ -295,6 +309,22 @@ BurstStudyResult run_burst_study(const ref::Scene& scene, const BurstStudyOption
   std::vector<BurstCounter> counters;
   counters.reserve(layouts.size());
   for (const auto& layout : layouts) counters.emplace_back(*layout, options.cache_lines);
+  // The channel run's layout records its fetches while it counts.
+  std::size_t chosen = layouts.size();
+  std::optional<Channels> channels;
+  std::vector<rtl::layout::Fetch> fetches;
+  if (!options.channel_layout.empty()) {
+    for (std::size_t i = 0; i < layouts.size(); ++i)
+      if (layouts[i]->name() == options.channel_layout) chosen = i;
+    if (chosen == layouts.size()) {
+      std::string names;
+      for (const auto& layout : layouts) names += (names.empty() ? "" : ", ") + layout->name();
+      throw Error("burst study: no layout " + options.channel_layout + " (the layouts: " + names +
+                  ")");
+    }
+    channels = load_channels(options, *layouts[chosen]);
+    counters[chosen].record(options.channel_reuse, &fetches);
+  }
   r.layouts.resize(layouts.size());
   ref::parallel_for(
       static_cast<int>(layouts.size()),
@@ -304,17 +334,9 @@ BurstStudyResult run_burst_study(const ref::Scene& scene, const BurstStudyOption
         r.layouts[li] = summarize(counters[li]);
       },
       scene.render.threads);
-  if (!options.channel_layout.empty()) {
-    const BurstLayout* chosen = nullptr;
-    for (const auto& layout : layouts)
-      if (layout->name() == options.channel_layout) chosen = layout.get();
-    if (!chosen) {
-      std::string names;
-      for (const auto& layout : layouts) names += (names.empty() ? "" : ", ") + layout->name();
-      throw Error("burst study: no layout " + options.channel_layout + " (the layouts: " + names +
-                  ")");
-    }
-    r.channel_run = run_channels(*chosen, stream.cells, options, scene.render.threads);
+  if (channels) {
+    r.channel_run =
+        run_channels(counters[chosen], fetches, *channels, options, scene.render.threads);
     r.has_channel_run = true;
   }
   if (!options.json.empty()) write_burst_study_json(options.json, r);
