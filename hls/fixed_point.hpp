@@ -119,6 +119,21 @@ constexpr int word_bits() noexcept {
 template <int W, bool S>
 using raw_t = std::conditional_t<(W <= 64), std::conditional_t<S, std::int64_t, std::uint64_t>,
                                  std::conditional_t<S, i128, u128>>;
+// Storage of V: the narrowest C++ integer of W bits or more. Canonical V fits it, and widening
+// it back to raw_t (sign- or zero-extension) gives raw() exactly; arithmetic stays in raw_t.
+// The narrow word is what makes a table of fixed-point entries (a classification entry, a
+// reflectance-map cell, a voxel bank) as small as its bits: eight 64-bit words per 8-byte
+// entry would fill the caches the software engines run from.
+template <int B, bool S>
+using sized_int_t = std::conditional_t<
+    (B == 8), std::conditional_t<S, std::int8_t, std::uint8_t>,
+    std::conditional_t<(B == 16), std::conditional_t<S, std::int16_t, std::uint16_t>,
+                       std::conditional_t<S, std::int32_t, std::uint32_t>>>;
+template <int W, bool S>
+using store_t = std::conditional_t<
+    (W <= 8), sized_int_t<8, S>,
+    std::conditional_t<(W <= 16), sized_int_t<16, S>,
+                       std::conditional_t<(W <= 32), sized_int_t<32, S>, raw_t<W, S>>>>;
 
 // Mask of the low n bits (n <= 0 gives 0, n >= word size gives all ones).
 template <class U>
@@ -937,6 +952,50 @@ template <class A, class B>
 constexpr int compare(const A& a, const B& b) noexcept {
   return compare(a, b, bool_c<sat_sym_right<A, B>::value>{});
 }
+// a < b, a <= b, a > b, a >= b. Where compare() would compare the two aligned words
+// (compare_as_is's one-word path, no SAT_SYM right operand), the relation is that one
+// comparison of the words: the same result as compare(a, b) OP 0, without the three-way
+// value, which the compiler does not fold back into a single compare (it was 9 % of the hls
+// engine's instructions).
+struct rel_lt {
+  template <class T>
+  constexpr bool operator()(T x, T y) const noexcept {
+    return x < y;
+  }
+};
+struct rel_le {
+  template <class T>
+  constexpr bool operator()(T x, T y) const noexcept {
+    return x <= y;
+  }
+};
+struct rel_gt {
+  template <class T>
+  constexpr bool operator()(T x, T y) const noexcept {
+    return x > y;
+  }
+};
+struct rel_ge {
+  template <class T>
+  constexpr bool operator()(T x, T y) const noexcept {
+    return x >= y;
+  }
+};
+template <class A, class B>
+struct rel_in_word : bool_c<cmp_fast<A, B>::value && !sat_sym_right<A, B>::value> {};
+template <class Rel, class A, class B>
+constexpr bool relation(const A& a, const B& b, bool_c<true> /* one word */) noexcept {
+  return Rel{}(aligned_word<A, B>(a), aligned_word_right<A, B>(b));
+}
+template <class Rel, class A, class B>
+constexpr bool relation(const A& a, const B& b, bool_c<false>) noexcept {
+  return Rel{}(compare(a, b), 0);
+}
+template <class Rel, class A, class B>
+constexpr bool relation(const A& a, const B& b) noexcept {
+  return relation<Rel>(a, b, rel_in_word<A, B>{});
+}
+
 template <class A, class B>
 constexpr bool equal_sym(const A& a, const B& b, bool_c<false>) noexcept {
   return equal_as_is(a, b);
@@ -1225,6 +1284,7 @@ class fixed_base {
 
  public:
   using raw_type = detail::raw_t<W, S>;
+  using store_type = detail::store_t<W, S>;
   static constexpr int width = W;
   static constexpr int iwidth = I;
   static constexpr q_mode qmode = Q;
@@ -1240,26 +1300,27 @@ class fixed_base {
 
   template <int W2, int I2, bool S2, q_mode Q2, o_mode O2, int N2>
   constexpr fixed_base(const fixed_base<W2, I2, S2, Q2, O2, N2>& x) noexcept
-      : v_(convert<W2 - I2, S2, W2>(x.raw())) {}
+      : v_(narrow_raw(convert<W2 - I2, S2, W2>(x.raw()))) {}
 
   template <int W2, bool S2>
-  constexpr fixed_base(const int_base<W2, S2>& x) noexcept : v_(convert<0, S2, W2>(x.raw())) {}
+  constexpr fixed_base(const int_base<W2, S2>& x) noexcept
+      : v_(narrow_raw(convert<0, S2, W2>(x.raw()))) {}
 
   template <class T, detail::enable_if_c<std::is_integral<T>::value> = 0>
   constexpr fixed_base(T x) noexcept
-      : v_(convert<0, detail::operand<T>::s, detail::operand<T>::w>(x)) {}
+      : v_(narrow_raw(convert<0, detail::operand<T>::s, detail::operand<T>::w>(x))) {}
 
   // Section 9: exact decode, one quantization and one overflow step; NaN/inf per its table.
-  constexpr fixed_base(double d) noexcept : v_(from_double(d)) {}
-  constexpr fixed_base(float f) noexcept : v_(from_double(static_cast<double>(f))) {}
+  constexpr fixed_base(double d) noexcept : v_(narrow_raw(from_double(d))) {}
+  constexpr fixed_base(float f) noexcept : v_(narrow_raw(from_double(static_cast<double>(f)))) {}
   // Internal (the operators of this header): v is already sign/zero-extended from W bits.
-  constexpr fixed_base(detail::exact_tag, raw_type v) noexcept : v_(v) {}
+  constexpr fixed_base(detail::exact_tag, raw_type v) noexcept : v_(narrow_raw(v)) {}
 
   // ---- Raw bits. from_raw keeps the low W bits of its argument (two's complement) and
   // reinterprets them; raw() returns V sign-extended (signed) or zero-extended (unsigned).
   static constexpr fixed_base from_raw(raw_type bits) noexcept {
     fixed_base r;
-    r.v_ = static_cast<raw_type>(detail::extend<W, S>(static_cast<word>(bits)));
+    r.v_ = narrow_raw(static_cast<raw_type>(detail::extend<W, S>(static_cast<word>(bits))));
     return r;
   }
   constexpr raw_type raw() const noexcept { return v_; }
@@ -1275,10 +1336,10 @@ class fixed_base {
   // ---- Conversions out (section 9) ---------------------------------------------------------
   // Round to nearest even (exact when the value fits 53 bits).
   constexpr double to_double() const noexcept {
-    return detail::scale<I - W>(static_cast<double>(v_));
+    return detail::scale<I - W>(static_cast<double>(raw()));
   }
   constexpr float to_float() const noexcept {
-    return static_cast<float>(detail::scale<I - W>(static_cast<double>(static_cast<float>(v_))));
+    return static_cast<float>(detail::scale<I - W>(static_cast<double>(static_cast<float>(raw()))));
   }
   // Toward zero, then the low bits (wrap). For I <= 0 this returns the mathematically correct
   // 0; ap sim returns -1 (I == 0, negative non-integer) or stack garbage (I < 0).
@@ -1293,13 +1354,13 @@ class fixed_base {
     return static_cast<unsigned long>(to_uint64());
   }
   constexpr char to_char() const noexcept { return static_cast<char>(to_int()); }
-  constexpr bool to_bool() const noexcept { return v_ != 0; }
+  constexpr bool to_bool() const noexcept { return raw() != 0; }
 
   // Explicit only: ap converts implicitly, which is what makes "a + 0.5" ambiguous there; here
   // the conversions are explicit so that "a + 0.5" is equally ill-formed.
   template <class T, detail::enable_if_c<std::is_arithmetic<T>::value> = 0>
   constexpr explicit operator T() const noexcept {
-    if (std::is_same<T, bool>::value) return static_cast<T>(v_ != 0);
+    if (std::is_same<T, bool>::value) return static_cast<T>(raw() != 0);
     if (std::is_same<T, float>::value) return static_cast<T>(to_float());
     if (std::is_floating_point<T>::value) return static_cast<T>(to_double());
     if (std::is_signed<T>::value) return static_cast<T>(to_int64());
@@ -1307,28 +1368,30 @@ class fixed_base {
   }
 
   // ---- Queries ---------------------------------------------------------------------------
-  constexpr bool is_neg() const noexcept { return detail::negative(v_, detail::bool_c<S>{}); }
-  constexpr bool is_zero() const noexcept { return v_ == 0; }
-  constexpr bool operator!() const noexcept { return v_ == 0; }
+  constexpr bool is_neg() const noexcept { return detail::negative(raw(), detail::bool_c<S>{}); }
+  constexpr bool is_zero() const noexcept { return raw() == 0; }
+  constexpr bool operator!() const noexcept { return raw() == 0; }
   constexpr int wl() const noexcept { return W; }
   constexpr int iwl() const noexcept { return I; }
   constexpr int length() const noexcept { return W; }
   constexpr int n_bits() const noexcept { return N; }
   constexpr int countLeadingZeros() const noexcept {
-    const word u = static_cast<word>(v_) & detail::low_mask<word>(W);
+    const word u = static_cast<word>(raw()) & detail::low_mask<word>(W);
     return detail::count_leading_zeros(u) - (detail::word_bits<word>() - W);
   }
 
   // ---- Bit and range access (section 10): raw bits, no Q/O --------------------------------
-  constexpr bool operator[](int i) const noexcept { return ((static_cast<word>(v_) >> i) & 1) != 0; }
+  constexpr bool operator[](int i) const noexcept {
+    return ((static_cast<word>(raw()) >> i) & 1) != 0;
+  }
   constexpr detail::bit_ref<fixed_base> operator[](int i) noexcept { return {this, i}; }
   constexpr bool bit(int i) const noexcept { return (*this)[i]; }
   constexpr detail::bit_ref<fixed_base> bit(int i) noexcept { return {this, i}; }
   // Bit of weight 2^i, i in [I - W, I - 1].
   constexpr bool get_bit(int i) const noexcept { return (*this)[i + W - I]; }
   constexpr void set_bit(int i, bool b) noexcept {
-    v_ = static_cast<raw_type>(
-        detail::extend<W, S>(detail::assign_bits<word>(static_cast<word>(v_), i, i, b)));
+    v_ = narrow_raw(static_cast<raw_type>(
+        detail::extend<W, S>(detail::assign_bits<word>(static_cast<word>(raw()), i, i, b))));
   }
   constexpr detail::range_ref<fixed_base> range(int hi, int lo) noexcept { return {this, hi, lo}; }
   constexpr detail::range_ref<const fixed_base> range(int hi, int lo) const noexcept {
@@ -1343,10 +1406,11 @@ class fixed_base {
     return {this, hi, lo};
   }
   constexpr detail::u128 get_range(int hi, int lo) const noexcept {
-    return detail::read_range<W, S>(static_cast<word>(v_), hi, lo);
+    return detail::read_range<W, S>(static_cast<word>(raw()), hi, lo);
   }
   constexpr void set_range(int hi, int lo, detail::u128 x) noexcept {
-    v_ = static_cast<raw_type>(detail::write_range<W, S>(static_cast<word>(v_), hi, lo, x));
+    v_ = narrow_raw(
+        static_cast<raw_type>(detail::write_range<W, S>(static_cast<word>(raw()), hi, lo, x)));
   }
 
   // ---- Unary operators (section 11) -------------------------------------------------------
@@ -1354,17 +1418,17 @@ class fixed_base {
   // Exact in <W+1, I+1, signed>, so -MIN is representable.
   constexpr fixed_base<W + 1, I + 1, true> operator-() const noexcept {
     using U = detail::word_t<W + 1>;
-    return detail::make_exact<fixed_base<W + 1, I + 1, true>>(U(U(0) - static_cast<U>(v_)));
+    return detail::make_exact<fixed_base<W + 1, I + 1, true>>(U(U(0) - static_cast<U>(raw())));
   }
   // Negation in the same width (wraps), as ap's getNeg().
   constexpr fixed_base<W, I, true, Q, O, N> getNeg() const noexcept {
     using R = fixed_base<W, I, true, Q, O, N>;
-    return R::from_raw(static_cast<typename R::raw_type>(word(word(0) - static_cast<word>(v_))));
+    return R::from_raw(static_cast<typename R::raw_type>(word(word(0) - static_cast<word>(raw()))));
   }
   // Bitwise NOT in the same type with default Q/O (ap: ap_fixed_base<W, I, S>).
   constexpr fixed_base<W, I, S> operator~() const noexcept {
     using R = fixed_base<W, I, S>;
-    return R::from_raw(static_cast<typename R::raw_type>(~static_cast<word>(v_)));
+    return R::from_raw(static_cast<typename R::raw_type>(~static_cast<word>(raw())));
   }
 
   // Section 11: ++/-- add 1.0 (not one LSB) through +=, so they quantize and handle overflow
@@ -1442,11 +1506,11 @@ class fixed_base {
   // Reinterpret the same bits with the binary point moved (exact, no bits lost).
   template <int K>
   constexpr fixed_base<W, I + K, S> lshift() const noexcept {
-    return fixed_base<W, I + K, S>::from_raw(v_);
+    return fixed_base<W, I + K, S>::from_raw(raw());
   }
   template <int K>
   constexpr fixed_base<W, I - K, S> rshift() const noexcept {
-    return fixed_base<W, I - K, S>::from_raw(v_);
+    return fixed_base<W, I - K, S>::from_raw(raw());
   }
 
 #ifndef __SYNTHESIS__
@@ -1455,7 +1519,7 @@ class fixed_base {
   // pattern.
   std::string to_string(int radix = 10) const {
     if (radix == 2 || radix == 16) return raw_pattern_string(radix);
-    return detail::fixed_to_string<W - I, S>(v_, to_double());
+    return detail::fixed_to_string<W - I, S>(raw(), to_double());
   }
 #endif
 
@@ -1477,22 +1541,22 @@ class fixed_base {
     return static_cast<raw_type>(detail::extend<W, S>(static_cast<word>(pattern)));
   }
   constexpr std::uint64_t trunc64() const noexcept {
-    return detail::trunc_toward_zero<std::uint64_t, W - I, S>(v_);
+    return detail::trunc_toward_zero<std::uint64_t, W - I, S>(raw());
   }
   constexpr fixed_base shl(std::int64_t n) const noexcept {
     if (n < 0) return shr(-n);
     if (n >= W) return from_raw(0);
-    return from_raw(static_cast<raw_type>(static_cast<word>(v_) << n));
+    return from_raw(static_cast<raw_type>(static_cast<word>(raw()) << n));
   }
   constexpr fixed_base shr(std::int64_t n) const noexcept {
     if (n < 0) return shl(-n);
     if (n >= W) return from_raw(is_neg() ? static_cast<raw_type>(~word(0)) : raw_type(0));
-    return from_raw(static_cast<raw_type>(v_ >> n));
+    return from_raw(static_cast<raw_type>(raw() >> n));
   }
 #ifndef __SYNTHESIS__
   std::string raw_pattern_string(int radix) const {
     const int step = radix == 2 ? 1 : 4;
-    const word u = static_cast<word>(v_) & detail::low_mask<word>(W);
+    const word u = static_cast<word>(raw()) & detail::low_mask<word>(W);
     std::string s = radix == 2 ? "0b" : "0x";
     for (int pos = ((W - 1) / step) * step; pos >= 0; pos -= step) {
       s += "0123456789abcdef"[static_cast<int>((u >> pos) & word(radix - 1))];
@@ -1501,7 +1565,10 @@ class fixed_base {
   }
 #endif
 
-  raw_type v_ = 0;
+  // raw_type -> storage: exact, since every stored V is canonical in W bits (detail::store_t).
+  static constexpr store_type narrow_raw(raw_type v) noexcept { return static_cast<store_type>(v); }
+
+  store_type v_ = 0;
 };
 
 // =============================================================================================
@@ -1519,70 +1586,73 @@ class int_base {
 
  public:
   using raw_type = detail::raw_t<W, S>;
+  using store_type = detail::store_t<W, S>;
   static constexpr int width = W;
   static constexpr bool is_signed = S;
 
   // Zero-initialised (ap: uninitialised).
   constexpr int_base() noexcept = default;
   template <int W2, bool S2>
-  constexpr int_base(const int_base<W2, S2>& x) noexcept : v_(store(x.raw())) {}
+  constexpr int_base(const int_base<W2, S2>& x) noexcept : v_(narrow_raw(store(x.raw()))) {}
   template <class T, detail::enable_if_c<std::is_integral<T>::value> = 0>
-  constexpr int_base(T x) noexcept : v_(store(x)) {}
+  constexpr int_base(T x) noexcept : v_(narrow_raw(store(x))) {}
   // Conversions from fixed and double truncate toward zero, then wrap (section 9).
   template <int W2, int I2, bool S2, q_mode Q2, o_mode O2, int N2>
   constexpr int_base(const fixed_base<W2, I2, S2, Q2, O2, N2>& x) noexcept
-      : v_(store(detail::trunc_toward_zero<word, W2 - I2, S2>(x.raw()))) {}
+      : v_(narrow_raw(store(detail::trunc_toward_zero<word, W2 - I2, S2>(x.raw())))) {}
   // ap sim gives +1 for d in (-0.5, 0) (section 9 bug); the clone returns the correct 0.
-  constexpr int_base(double d) noexcept : v_(from_double(d)) {}
-  constexpr int_base(float f) noexcept : v_(from_double(static_cast<double>(f))) {}
+  constexpr int_base(double d) noexcept : v_(narrow_raw(from_double(d))) {}
+  constexpr int_base(float f) noexcept : v_(narrow_raw(from_double(static_cast<double>(f)))) {}
   // Internal (the operators of this header): v is already sign/zero-extended from W bits.
-  constexpr int_base(detail::exact_tag, raw_type v) noexcept : v_(v) {}
+  constexpr int_base(detail::exact_tag, raw_type v) noexcept : v_(narrow_raw(v)) {}
 
   static constexpr int_base from_raw(raw_type bits) noexcept {
     int_base r;
-    r.v_ = store(bits);
+    r.v_ = narrow_raw(store(bits));
     return r;
   }
   constexpr raw_type raw() const noexcept { return v_; }
 
-  constexpr double to_double() const noexcept { return static_cast<double>(v_); }
-  constexpr float to_float() const noexcept { return static_cast<float>(v_); }
+  constexpr double to_double() const noexcept { return static_cast<double>(raw()); }
+  constexpr float to_float() const noexcept { return static_cast<float>(raw()); }
   constexpr int to_int() const noexcept {
-    return static_cast<int>(static_cast<std::uint32_t>(v_));
+    return static_cast<int>(static_cast<std::uint32_t>(raw()));
   }
-  constexpr unsigned to_uint() const noexcept { return static_cast<std::uint32_t>(v_); }
+  constexpr unsigned to_uint() const noexcept { return static_cast<std::uint32_t>(raw()); }
   constexpr std::int64_t to_int64() const noexcept {
-    return static_cast<std::int64_t>(static_cast<std::uint64_t>(v_));
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(raw()));
   }
-  constexpr std::uint64_t to_uint64() const noexcept { return static_cast<std::uint64_t>(v_); }
+  constexpr std::uint64_t to_uint64() const noexcept { return static_cast<std::uint64_t>(raw()); }
   constexpr long to_long() const noexcept { return static_cast<long>(to_int64()); }
   constexpr unsigned long to_ulong() const noexcept {
     return static_cast<unsigned long>(to_uint64());
   }
   constexpr char to_char() const noexcept { return static_cast<char>(to_int()); }
-  constexpr bool to_bool() const noexcept { return v_ != 0; }
+  constexpr bool to_bool() const noexcept { return raw() != 0; }
   template <class T, detail::enable_if_c<std::is_arithmetic<T>::value> = 0>
   constexpr explicit operator T() const noexcept {
-    if (std::is_same<T, bool>::value) return static_cast<T>(v_ != 0);
-    if (std::is_floating_point<T>::value) return static_cast<T>(v_);
+    if (std::is_same<T, bool>::value) return static_cast<T>(raw() != 0);
+    if (std::is_floating_point<T>::value) return static_cast<T>(raw());
     return static_cast<T>(to_uint64());
   }
 
-  constexpr bool is_neg() const noexcept { return detail::negative(v_, detail::bool_c<S>{}); }
-  constexpr bool is_zero() const noexcept { return v_ == 0; }
-  constexpr bool operator!() const noexcept { return v_ == 0; }
+  constexpr bool is_neg() const noexcept { return detail::negative(raw(), detail::bool_c<S>{}); }
+  constexpr bool is_zero() const noexcept { return raw() == 0; }
+  constexpr bool operator!() const noexcept { return raw() == 0; }
   constexpr int length() const noexcept { return W; }
   constexpr int countLeadingZeros() const noexcept {
-    return fixed_base<W, W, S>::from_raw(v_).countLeadingZeros();
+    return fixed_base<W, W, S>::from_raw(raw()).countLeadingZeros();
   }
 
-  constexpr bool operator[](int i) const noexcept { return ((static_cast<word>(v_) >> i) & 1) != 0; }
+  constexpr bool operator[](int i) const noexcept {
+    return ((static_cast<word>(raw()) >> i) & 1) != 0;
+  }
   constexpr detail::bit_ref<int_base> operator[](int i) noexcept { return {this, i}; }
   constexpr bool bit(int i) const noexcept { return (*this)[i]; }
   constexpr detail::bit_ref<int_base> bit(int i) noexcept { return {this, i}; }
   constexpr void set_bit(int i, bool b) noexcept {
-    v_ = static_cast<raw_type>(
-        detail::extend<W, S>(detail::assign_bits<word>(static_cast<word>(v_), i, i, b)));
+    v_ = narrow_raw(static_cast<raw_type>(
+        detail::extend<W, S>(detail::assign_bits<word>(static_cast<word>(raw()), i, i, b))));
   }
   constexpr detail::range_ref<int_base> range(int hi, int lo) noexcept { return {this, hi, lo}; }
   constexpr detail::range_ref<const int_base> range(int hi, int lo) const noexcept {
@@ -1597,10 +1667,11 @@ class int_base {
     return {this, hi, lo};
   }
   constexpr detail::u128 get_range(int hi, int lo) const noexcept {
-    return detail::read_range<W, S>(static_cast<word>(v_), hi, lo);
+    return detail::read_range<W, S>(static_cast<word>(raw()), hi, lo);
   }
   constexpr void set_range(int hi, int lo, detail::u128 x) noexcept {
-    v_ = static_cast<raw_type>(detail::write_range<W, S>(static_cast<word>(v_), hi, lo, x));
+    v_ = narrow_raw(
+        static_cast<raw_type>(detail::write_range<W, S>(static_cast<word>(raw()), hi, lo, x)));
   }
 
   constexpr int_base operator+() const noexcept { return *this; }
@@ -1609,10 +1680,10 @@ class int_base {
   static constexpr int neg_width = (S && W == 1) ? 3 : W + 1;
   constexpr int_base<neg_width, true> operator-() const noexcept {
     using U = detail::word_t<neg_width>;
-    return detail::make_exact<int_base<neg_width, true>>(U(U(0) - static_cast<U>(v_)));
+    return detail::make_exact<int_base<neg_width, true>>(U(U(0) - static_cast<U>(raw())));
   }
   constexpr int_base operator~() const noexcept {
-    return from_raw(static_cast<raw_type>(~static_cast<word>(v_)));
+    return from_raw(static_cast<raw_type>(~static_cast<word>(raw())));
   }
   constexpr int_base& operator++() noexcept { return *this += 1; }
   constexpr int_base& operator--() noexcept { return *this -= 1; }
@@ -1689,8 +1760,8 @@ class int_base {
 #ifndef __SYNTHESIS__
   // Printing (host only), as fixed_base::to_string.
   std::string to_string(int radix = 10) const {
-    if (radix == 2 || radix == 16) return fixed_base<W, W, S>::from_raw(v_).to_string(radix);
-    return detail::fixed_to_string<0, S>(v_, to_double());
+    if (radix == 2 || radix == 16) return fixed_base<W, W, S>::from_raw(raw()).to_string(radix);
+    return detail::fixed_to_string<0, S>(raw(), to_double());
   }
 #endif
 
@@ -1715,15 +1786,18 @@ class int_base {
   constexpr int_base shl(std::int64_t n) const noexcept {
     if (n < 0) return shr(-n);
     if (n >= W) return from_raw(0);
-    return from_raw(static_cast<raw_type>(static_cast<word>(v_) << n));
+    return from_raw(static_cast<raw_type>(static_cast<word>(raw()) << n));
   }
   constexpr int_base shr(std::int64_t n) const noexcept {
     if (n < 0) return shl(-n);
     if (n >= W) return from_raw(is_neg() ? static_cast<raw_type>(~word(0)) : raw_type(0));
-    return from_raw(static_cast<raw_type>(v_ >> n));
+    return from_raw(static_cast<raw_type>(raw() >> n));
   }
 
-  raw_type v_ = 0;
+  // raw_type -> storage: exact, since every stored V is canonical in W bits (detail::store_t).
+  static constexpr store_type narrow_raw(raw_type v) noexcept { return static_cast<store_type>(v); }
+
+  store_type v_ = 0;
 };
 
 // =============================================================================================
@@ -1805,19 +1879,19 @@ constexpr bool operator!=(const A& a, const B& b) noexcept {
 }
 template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator<(const A& a, const B& b) noexcept {
-  return detail::compare(a, b) < 0;
+  return detail::relation<detail::rel_lt>(a, b);
 }
 template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator<=(const A& a, const B& b) noexcept {
-  return detail::compare(a, b) <= 0;
+  return detail::relation<detail::rel_le>(a, b);
 }
 template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator>(const A& a, const B& b) noexcept {
-  return detail::compare(a, b) > 0;
+  return detail::relation<detail::rel_gt>(a, b);
 }
 template <class A, class B, detail::enable_if_c<detail::operands<A, B>::value> = 0>
 constexpr bool operator>=(const A& a, const B& b) noexcept {
-  return detail::compare(a, b) >= 0;
+  return detail::relation<detail::rel_ge>(a, b);
 }
 
 template <class A, detail::enable_if_c<detail::ap_type<A>::value> = 0>

@@ -190,6 +190,20 @@ struct EngineBanks : BitTrueBanks<P> {
   }
 };
 
+// gather (interpolation_processor.hpp) on the engine's banks, found by
+// argument-dependent lookup from interpolate: corner j is read from its bank
+// j ^ parity directly, the crossbar's routing folded into the read instead of a
+// second copy of the eight words through a run-time index. The same word in
+// every corner.
+template <class P>
+VOXCAST_HLS_HOST_INLINE void gather(const EngineBanks<P>& banks, const BankAccess<P>& acc,
+                                    VoxelWordFx<P> corner[8]) {
+  VOXCAST_HLS_HOST_UNROLL for (int j = 0; j < 8; ++j) {
+    const unsigned b = static_cast<unsigned>(j) ^ acc.parity;
+    corner[j] = banks.read(static_cast<int>(b), acc.addr[b]);
+  }
+}
+
 // The packed words an EngineBanks<P> reads: the memory's own, or, for a memory
 // made without them (by hand, or with fields wider than 16 bits at run time
 // while P's fit), a copy the caller keeps for the frame; null when P does not

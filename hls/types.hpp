@@ -45,7 +45,9 @@
 //              write_bits(x, v): all T::width <= 64 bits. No concatenation (a, b): ap
 //              concatenates ints, ranges and bits, the clone refuses it at compile time.
 //   Queries    T::width, x.length(); fixed_iwidth<T>::value (I of a fixed type). The sign of
-//              a fixed: x < 0 (ac_fixed's is_neg() is private).
+//              a fixed: x < 0 (ac_fixed's is_neg() is private). leading_zeros(x): the
+//              leading zeros of the W-bit pattern (W for 0; ap countLeadingZeros, ac
+//              leading_sign of the unsigned pattern).
 //   Print      std::ostream << x.to_double().
 //
 // Clone and ap only (not ac): x.range(...), x.bit(i), x.get_bit(i), setBits, bitsToFixed,
@@ -199,6 +201,12 @@ struct fixed_iwidth {
   static constexpr int value = T::i_width;
 };
 
+// Leading zeros of x's W-bit pattern (W for 0): ac's leading_sign() of the unsigned pattern.
+template <class T>
+inline int leading_zeros(const T& x) {
+  return ac_detail::pattern(x).leading_sign().to_int();
+}
+
 }  // namespace hls
 }  // namespace voxcast
 
@@ -228,6 +236,13 @@ template <class T>
 struct fixed_iwidth {
   static constexpr int value = T::iwidth;
 };
+// Leading zeros of x's W-bit pattern (W for 0; W <= 64): countLeadingZeros(), which ap
+// declares non-const (hence the copy).
+template <class T>
+inline int leading_zeros(const T& x) {
+  T t = x;
+  return t.countLeadingZeros();
+}
 }  // namespace hls
 }  // namespace voxcast
 #endif

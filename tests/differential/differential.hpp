@@ -85,6 +85,7 @@ std::string type_name(const type_desc& t);
   X(shr_assign)                                                                                 \
   X(to_double) X(to_int) X(to_uint) X(to_int64) X(to_uint64) X(to_long) X(to_ulong)            \
   X(bit_read) X(bit_write) X(read_bits) X(write_bits) X(read_bits_all) X(write_bits_all)       \
+  X(leading_zeros)                                                                              \
   X(length) X(width) X(iwidth)                                                                  \
   X(range_read) X(range_write) X(range_reversed) X(to_string)                                  \
   X(AUX_a_plus_lsb) X(AUX_a_minus_lsb) X(AUX_neg_quotient) X(AUX_neg_quotient_in_a)

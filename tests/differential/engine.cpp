@@ -506,6 +506,7 @@ void eval_pair(const inputs& in, outputs& out) {
       A t = a;
       H::write_bits(t, in.v);
       put(op_write_bits_all, t);
+      put(op_leading_zeros, H::leading_zeros(a));  // normalize_direction's priority encoder
     }
     put(op_length, a.length());
     put(op_width, static_cast<int>(A::width));

@@ -127,7 +127,9 @@ static_assert(constructible_from<fixed<8, 4>, double>);
 static_assert(constructible_from<fixed<8, 4>, float>);
 static_assert(!std::is_convertible_v<fixed<8, 4>, double>);  // explicit only: to_double()
 static_assert(std::is_trivially_copyable_v<fixed<8, 4>>);
-static_assert(sizeof(fixed<8, 4>) == 8 && sizeof(fixed<100, 4>) == 16);
+// Storage is the narrowest C++ integer of W bits or more (docs/fixed-point.md, Representation).
+static_assert(sizeof(fixed<8, 4>) == 1 && sizeof(ufixed<9, 1>) == 2 && sizeof(fixed<17, 3>) == 4 &&
+              sizeof(uint_t<33>) == 8 && sizeof(fixed<64, 4>) == 8 && sizeof(fixed<100, 4>) == 16);
 
 // ---- Section 5: result types ---------------------------------------------------------------
 using A8 = fixed<8, 4>;
