@@ -7,6 +7,7 @@
 #include "hls/host_frame.hpp"
 #include "refmodel/error.hpp"
 #include "rtl_model/board/board_config.hpp"
+#include "rtl_model/burst_engine.hpp"
 #include "rtl_model/layout/vizard2_layout.hpp"
 #include "rtl_model/pipeline/ray_pipeline.hpp"
 
@@ -38,6 +39,9 @@ RtlResult render(const bittrue::FrameSetup& fs, const bittrue::VoxelMemory& memo
 }  // namespace
 
 std::ostream& operator<<(std::ostream& os, const RtlConfig& c) {
+  if (c.card.enabled)
+    return os << c.pipeline << "; " << c.card << ", scheduler " << c.scheduler << ", refresh "
+              << c.refresh << "; " << c.pipeline.dimm;
   return os << c.pipeline << "; layout " << c.mapping << ", scheduler " << c.scheduler
             << (c.scheduler == "in-order" ? "" : " (window " +
                     std::to_string(c.pipeline.scheduler_params.reorder_window) + ")")
@@ -53,6 +57,10 @@ RtlConfig vizard2_baseline() {
 
 RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
                      const RtlConfig& config, const trace::TraceOptions* trace) {
+  if (config.card.enabled) {
+    if (trace) throw Error("rtl engine: the DDR4 card model writes no VCD trace (--vcd)");
+    return render_ddr4_card(setup, memory, config);
+  }
   RtlResult r;
   const auto run = [&]<class P>() { r = render<P>(setup, memory, config, trace); };
   if (!hls::host::dispatch_profile(setup.profile, run))

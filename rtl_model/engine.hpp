@@ -18,6 +18,7 @@
 #include "refmodel/render/quant_image.hpp"
 #include "refmodel/render/raycaster.hpp"
 #include "rtl_model/layout/address_mapping.hpp"
+#include "rtl_model/pipeline/burst_config.hpp"
 #include "rtl_model/pipeline/config.hpp"
 #include "rtl_model/pipeline/stats.hpp"
 #include "rtl_model/trace/pipeline_trace.hpp"
@@ -31,6 +32,10 @@ struct RtlConfig {
   layout::MappingSpec mapping;        // "linear" (the baseline), "bricked", "bricked-swizzled", "morton"
   std::string scheduler = "in-order"; // sched::make_scheduler
   std::string refresh = "eager";      // sched::make_refresh_policy
+  // A DDR4 board (card.enabled): N pipelines on four DDR4 channels
+  // (pipeline/burst_card.hpp); pipeline.dimm and pipeline.controller are then
+  // each channel's, `mapping` is unused (the burst layout is fixed).
+  pipeline::BurstCardConfig card;
 };
 
 std::ostream& operator<<(std::ostream& os, const RtlConfig& c);
@@ -47,12 +52,14 @@ struct RtlResult {
   std::uint64_t traced_commands = 0;  // SDRAM commands inside the VCD window (with a trace)
 };
 
-// One frame. Throws voxcast::Error for a profile that is not compiled in, an
+// One frame, on the SDR card or, with config.card.enabled, the DDR4 card.
+// Throws voxcast::Error for a profile that is not compiled in, an
 // unknown policy or mapping, a volume that does not fit the DIMMs, a deadlock
 // or state left in the pipeline at the end.
 // With `trace`, the frame's FIFO handshakes and SDRAM commands inside its
 // window go to trace->out as a VCD (rtl_model/trace/pipeline_trace.hpp);
-// the cycles and pixels are the same with and without.
+// the cycles and pixels are the same with and without. The DDR4 card has no
+// trace (an error).
 RtlResult rtl_render(const bittrue::FrameSetup& setup, const bittrue::VoxelMemory& memory,
                      const RtlConfig& config = {}, const trace::TraceOptions* trace = nullptr);
 

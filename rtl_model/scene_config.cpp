@@ -40,6 +40,29 @@ sdram::TimingNs sdram_preset(const std::string& name) {
   return name == "pc100-cl2" ? sdram::presets::pc100_cl2() : sdram::presets::pc100_cl3();
 }
 
+// The DDR4 card's keys; those of the SDR card's word layout and issue
+// variants do not apply to it (an error naming the key, not a silent
+// default).
+RtlConfig ddr4_card(const ref::RtlDesc& d, RtlConfig c) {
+  const std::string board = " on the DDR4 board \"" + d.board + "\"";
+  if (d.pipelines < 1 || d.pipelines > 64)
+    throw Error("rtl.pipelines = " + std::to_string(d.pipelines) + " is out of range 1..64");
+  if (d.sdram != "board")
+    throw Error("rtl.sdram = \"" + d.sdram + "\" is an SDR preset; it does not apply" + board);
+  if (d.layout != "linear")
+    throw Error("rtl.layout = \"" + d.layout +
+                "\" orders SDR words; the DDR4 card's bursts are 4x2x2-skewed-blocks" + board);
+  if (d.brick != ref::RtlDesc{}.brick)
+    throw Error("rtl.brick: bricks of SDR words; the DDR4 card's bursts are 4x2x2-skewed-blocks" +
+                board);
+  if (d.issue != "oldest" || d.issue_burst != 0)
+    throw Error("rtl.issue = \"" + d.issue +
+                "\", rtl.issue_burst = " + std::to_string(d.issue_burst) +
+                ": the DDR4 card issues from the oldest ray to its end (\"oldest\", 0)" + board);
+  c.card.pipelines = d.pipelines;
+  return c;
+}
+
 }  // namespace
 
 RtlConfig rtl_config(const ref::RtlDesc& d) {
@@ -66,8 +89,13 @@ RtlConfig rtl_config(const ref::RtlDesc& d) {
   p.controller.auto_precharge = d.auto_precharge;
   p.scheduler_params.reorder_window = d.reorder_window;
   p.scheduler_params.starvation_limit = d.starvation_limit;
-  if (d.sdram != "board") p.dimm.timing = sdram_preset(d.sdram);
   p.dimm.refresh_postpone_limit = d.refresh_postpone;
+  if (c.card.enabled) return ddr4_card(d, c);
+  if (d.pipelines != 1)
+    throw Error("rtl.pipelines = " + std::to_string(d.pipelines) +
+                ": the SDR card (rtl.board = \"" + d.board +
+                "\") has one pipeline; more run on a DDR4 board");
+  if (d.sdram != "board") p.dimm.timing = sdram_preset(d.sdram);
   return c;
 }
 

@@ -147,6 +147,8 @@ CosimResult run_cosim(const ref::Scene& scene, const std::string& out_dir,
     r.rtl_cycles = rtl_result.stats.cycles;
     r.rtl_fps = rtl_result.stats.fps();
     r.rtl_ns_per_sample = rtl_result.stats.ns_per_sample();
+    r.rtl_clock_mhz = rtl_result.stats.clock_mhz;
+    r.rtl_pipelines = rtl_result.stats.card.pipelines;
     r.bit_exact = r.bit_exact && r.rtl_exact;
   }
   if (!r.bit_exact && !r.rtl_exact && hls.pixels == bt.pixels) {
@@ -287,7 +289,12 @@ void print_cosim_summary(std::ostream& os, const ref::Scene& scene, const CosimR
      << rate(r.samples_hls, r.seconds_hls) << " M samples/s, bit-true "
      << rate(r.samples_float, r.seconds_bittrue) << " M samples/s (float's sample count)\n";
   for (const EngineNotRun& n : r.not_run) os << "not run    " << n.engine << ": " << n.reason << "\n";
-  if (r.rtl_ran)
+  if (r.rtl_ran && r.rtl_pipelines > 0)
+    os << "card       rtl model (DDR4 card, " << r.rtl_pipelines << " pipeline(s), "
+       << scene.rtl.scheduler << " scheduler, " << scene.rtl.traversal
+       << " traversal): " << r.rtl_cycles << " cycles, " << r.rtl_fps << " frames/s at "
+       << r.rtl_clock_mhz << " MHz, " << r.rtl_ns_per_sample << " ns/sample\n";
+  else if (r.rtl_ran)
     os << "card       rtl model (" << scene.rtl.scheduler << " scheduler, " << scene.rtl.layout
        << " layout, " << scene.rtl.traversal << " traversal): " << r.rtl_cycles << " cycles, "
        << r.rtl_fps << " frames/s at 100 MHz, " << r.rtl_ns_per_sample << " ns/sample\n";

@@ -41,6 +41,8 @@ struct CosimResult {
   bool rtl_exact = true;      // rtl == hls
   std::uint64_t rtl_cycles = 0;
   double rtl_fps = 0.0, rtl_ns_per_sample = 0.0;
+  double rtl_clock_mhz = 0.0;  // the card's core clock
+  int rtl_pipelines = 0;       // the DDR4 card's (0: the SDR card)
   Accuracy accuracy;          // hls against the float reference at the same settings
   TruthSettings truth;        // how the truth was rendered
   Accuracy truth_accuracy;    // hls (bit-true if !hls_ran) against the truth

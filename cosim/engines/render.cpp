@@ -83,6 +83,17 @@ void write_report(const std::string& path, const ref::Scene& scene, const Render
                 {"ns_per_sample", s.rtl_ns_per_sample}, {"row_hit_rate", s.rtl_row_hit_rate},
                 {"config", rtl_desc_json(scene.rtl)}};
   if (s.engine == Engine::Rtl && s.vcd_commands > 0) j["rtl"]["vcd_commands"] = s.vcd_commands;
+  if (s.engine == Engine::Rtl && s.rtl_pipelines > 0)
+    j["rtl"]["ddr4_card"] = {{"pipelines", s.rtl_pipelines},
+                             {"clock_mhz", s.rtl_clock_mhz},
+                             {"samples_per_second", s.rtl_samples_per_second},
+                             {"bandwidth_gb_s", s.rtl_bandwidth_gbs},
+                             {"bandwidth_share", s.rtl_bandwidth_share},
+                             {"cache_hit_rate", s.rtl_cache_hit_rate},
+                             {"bound", s.rtl_bound},
+                             {"samples_issued", s.rtl_samples_issued},
+                             {"pipeline_busy", s.rtl_pipeline_busy},
+                             {"channel_busy", s.rtl_channel_busy}};
   j["written"] = s.written;
   write_json_file(path, j);
 }
@@ -106,6 +117,18 @@ ref::Image render_view(const ref::Scene& scene, const ref::Volume& volume,
     summary.rtl_ns_per_sample = r.stats.ns_per_sample();
     summary.rtl_fps = r.stats.fps();
     summary.rtl_row_hit_rate = r.stats.row_hit_rate();
+    summary.rtl_clock_mhz = r.stats.clock_mhz;
+    summary.rtl_pipelines = r.stats.card.pipelines;
+    if (r.stats.card.pipelines > 0) {
+      summary.rtl_samples_per_second = r.stats.samples_per_second();
+      summary.rtl_bandwidth_gbs = r.stats.bandwidth_mb_s() * 1e-3;
+      summary.rtl_bandwidth_share = r.stats.bandwidth_utilisation();
+      summary.rtl_cache_hit_rate = r.stats.card.cache_hit_rate();
+      summary.rtl_bound = r.stats.card.bound(r.stats.cycles);
+      summary.rtl_samples_issued = r.stats.samples_issued;
+      summary.rtl_pipeline_busy = r.stats.card.pipeline_utilisation(r.stats.cycles);
+      summary.rtl_channel_busy = r.stats.card.channel_utilisation();
+    }
     return r.image.to_image();
   }
   return hls_render_image(setup, *memory, scene.render.threads, &fs).to_image();
@@ -259,12 +282,27 @@ void print_raycast_setup(std::ostream& os, const ref::Scene& scene, const Render
   if (scene.render.space_leaping && !mip)
     os << ", " << sample_count(s.stats.samples_skipped) << " skipped by space leaping";
   os << "\n" << std::setprecision(2);
-  if (s.engine == Engine::Rtl)
+  if (s.engine == Engine::Rtl && s.rtl_pipelines > 0) {
+    os << std::setprecision(0) << "card     " << s.rtl_cycles << std::setprecision(2)
+       << " cycles at " << s.rtl_clock_mhz << " MHz: " << s.rtl_fps << " frames/s, "
+       << std::setprecision(3) << s.rtl_ns_per_sample << " ns/sample, "
+       << s.rtl_samples_per_second * 1e-9 << " G samples/s (" << s.rtl_samples_issued
+       << " issued, those beyond an early termination included)\n"
+       << std::setprecision(2) << "         DDR4 card, " << s.rtl_pipelines << " pipeline(s), "
+       << scene.rtl.ray_slots << " ray slots each: channels " << s.rtl_bandwidth_gbs << " GB/s ("
+       << 100.0 * s.rtl_bandwidth_share << "% of peak), row hit rate " << 100.0 * s.rtl_row_hit_rate
+       << "%, brick cache hit rate " << 100.0 * s.rtl_cache_hit_rate << "%; bound: " << s.rtl_bound
+       << " (busiest pipeline issuing " << 100.0 * s.rtl_pipeline_busy
+       << "% of clocks, busiest channel's data bus " << 100.0 * s.rtl_channel_busy << "% busy)\n"
+       << "         " << scene.rtl.scheduler << " scheduler, " << scene.rtl.traversal
+       << " traversal\n";
+  } else if (s.engine == Engine::Rtl) {
     os << std::setprecision(0) << "card     " << s.rtl_cycles << std::setprecision(2)
        << " cycles at 100 MHz: " << s.rtl_fps << " frames/s, " << s.rtl_ns_per_sample
        << " ns/sample, row hit rate " << 100.0 * s.rtl_row_hit_rate << "%\n"
        << "         " << scene.rtl.scheduler << " scheduler, " << scene.rtl.layout << " layout, "
        << scene.rtl.traversal << " traversal, " << scene.rtl.ray_slots << " ray slots\n";
+  }
 }
 
 }  // namespace

@@ -43,6 +43,18 @@ struct RenderSummary {
   double rtl_ns_per_sample = 0.0;  // of the last frame
   double rtl_fps = 0.0;
   double rtl_row_hit_rate = 0.0;  // summed over every frame and eye
+  double rtl_clock_mhz = 0.0;     // the card's core clock
+  // The DDR4 card (rtl_pipelines > 0), of the last frame: samples per second,
+  // the channels' bandwidth, the brick caches' hit rate, what bounds it.
+  int rtl_pipelines = 0;
+  double rtl_samples_per_second = 0.0;
+  double rtl_bandwidth_gbs = 0.0;
+  double rtl_bandwidth_share = 0.0;
+  double rtl_cache_hit_rate = 0.0;
+  std::string rtl_bound;
+  std::uint64_t rtl_samples_issued = 0;  // composited + issued beyond an early termination
+  double rtl_pipeline_busy = 0.0;        // the busiest pipeline's issue clocks / core clocks
+  double rtl_channel_busy = 0.0;         // the busiest channel's data-bus clocks / memory clocks
   std::uint64_t vcd_commands = 0;  // SDRAM commands inside the VCD window
   std::vector<Hazard> hazards;     // the precision guard's (fixed-point engines)
   std::vector<std::string> written;

@@ -35,6 +35,7 @@ void for_each_rtl_key(Desc& d, F&& f) {
   f(std::string_view("queue_depth"), d.queue_depth);
   f(std::string_view("return_depth"), d.return_depth);
   f(std::string_view("auto_precharge"), d.auto_precharge);
+  f(std::string_view("pipelines"), d.pipelines);
 }
 
 // The names alone.

@@ -121,6 +121,9 @@ struct RtlDesc {
   int queue_depth = 8;                 // controller request queue per DIMM
   int return_depth = 8;                // controller read-data return FIFO per DIMM
   bool auto_precharge = false;         // a row's last queued READ closes it (RDA); false: open page
+  // A DDR4 board's card (rtl_model/pipeline/burst_card.hpp): ray pipelines
+  // sharing the four channels; the SDR card has one.
+  int pipelines = 1;
 };
 // --- VIRIM: the Heidelberg Raytracing Model (docs/heidelberg.md) ----------------
 enum class Algorithm { Raycast, Heidelberg };

@@ -589,6 +589,7 @@ void read_rtl(const TableReader& r, const std::string& base_dir, RtlDesc& d) {
   d.queue_depth = r.integer("queue_depth", d.queue_depth, 1, 64);
   d.return_depth = r.integer("return_depth", d.return_depth, 1, 64);
   d.auto_precharge = r.boolean("auto_precharge", d.auto_precharge);
+  d.pipelines = r.integer("pipelines", d.pipelines, 1, 64);
   if (d.reorder_window > d.queue_depth)
     r.fail("reorder_window", "= " + std::to_string(d.reorder_window) +
                                  " exceeds rtl.queue_depth = " + std::to_string(d.queue_depth) +

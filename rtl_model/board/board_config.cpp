@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "refmodel/error.hpp"
+#include "rtl_model/layout/burst_layout.hpp"
 #include "rtl_model/layout/vizard2_layout.hpp"
 
 namespace voxcast::rtl {
@@ -13,12 +14,30 @@ namespace {
 }
 }  // namespace
 
-RtlConfig rtl_config_for_board(const board::Board& b) {
+namespace {
+
+// A DDR4 board: the card of N pipelines at the core clock on the board's four
+// channels (pipeline/burst_card.hpp), each channel the DRAM model's.
+RtlConfig ddr4_card_config(const board::Board& b) {
   const board::Memory& m = b.memory;
-  if (m.type != "sdr")
-    cannot_model(b, "memory.type = \"" + m.type +
-                        "\" (the card model runs SDR SDRAM; one DDR4 channel runs in the DRAM "
-                        "model, voxcast dram-trace)");
+  if (m.dimms != layout::kBurstChannels)
+    cannot_model(b, "memory.dimms = " + std::to_string(m.dimms) +
+                        " (the DDR4 card lays the volume out over " +
+                        std::to_string(layout::kBurstChannels) + " channels)");
+  RtlConfig c;
+  c.pipeline.dimm = channel_config_for_board(b);
+  const sdram::Geometry& g = c.pipeline.dimm.geometry;
+  if (g.bank_groups != static_cast<std::uint32_t>(layout::kBankGroups))
+    cannot_model(b, "memory.bank_groups = " + std::to_string(g.bank_groups) +
+                        " (the DDR4 card's burst layout skews bricks over " +
+                        std::to_string(layout::kBankGroups) + " bank groups)");
+  c.card.enabled = true;
+  c.card.core_period_ps = b.core().period_ps;
+  return c;
+}
+
+RtlConfig sdr_card_config(const board::Board& b) {
+  const board::Memory& m = b.memory;
   if (m.dimms != layout::kDimms)
     cannot_model(b, "memory.dimms = " + std::to_string(m.dimms) +
                         " (the VIZARD II layout interleaves the volume over " +
@@ -43,6 +62,16 @@ RtlConfig rtl_config_for_board(const board::Board& b) {
     cannot_model(b, e.what());
   }
   return c;
+}
+
+}  // namespace
+
+RtlConfig rtl_config_for_board(const board::Board& b) {
+  const board::Memory& m = b.memory;
+  if (m.type == "ddr4") return ddr4_card_config(b);
+  if (m.type != "sdr")
+    cannot_model(b, "memory.type = \"" + m.type + "\" (the card model runs SDR SDRAM or DDR4)");
+  return sdr_card_config(b);
 }
 
 sdram::DimmConfig channel_config_for_board(const board::Board& b) {

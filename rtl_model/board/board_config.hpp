@@ -12,12 +12,15 @@ namespace voxcast::rtl {
 
 // The baseline RtlConfig (in-order, eager refresh, scan-line, linear layout)
 // with each DIMM's geometry, datasheet timing, clock and burst length from the
-// board. Throws voxcast::Error naming the board when the model cannot
-// simulate it: memory that is not SDR SDRAM (the card model runs SDR; one DDR4
-// channel runs in the DRAM model, channel_config_for_board), or a
-// core clock other than the memory clock (the model runs the pipeline at the
-// SDRAM clock, as VIZARD II did: 2001 paper §2.3), or not four DIMMs (the
-// VIZARD II layout interleaves the volume over four).
+// board. An SDR board is the VIZARD II card (RayPipeline); a DDR4 board the
+// DDR4 card (RtlConfig::card, pipeline/burst_card.hpp: one pipeline by
+// default, each channel channel_config_for_board's, the pipelines at the
+// board's core clock). Throws voxcast::Error naming the board when the model
+// cannot simulate it: memory that is neither SDR SDRAM nor DDR4, an SDR core
+// clock other than the memory clock (the model runs that pipeline at the
+// SDRAM clock, as VIZARD II did: 2001 paper §2.3), not four DIMMs (both
+// layouts interleave the volume over four), or a DDR4 channel without four
+// bank groups or that channel_config_for_board refuses.
 RtlConfig rtl_config_for_board(const board::Board& board);
 
 // One channel (one DIMM) of the board's memory as the DRAM model runs it

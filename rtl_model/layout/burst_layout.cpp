@@ -211,12 +211,8 @@ BurstCounter::BurstCounter(const BurstLayout& layout, std::uint32_t cache_lines)
 
 void BurstCounter::begin_ray() { prev_count_ = 0; }
 
-// Fibonacci hashing (Knuth, TAOCP vol. 3, §6.4): the top bits of index x
-// 2^64 / golden ratio. The brick index's low bits alone would map every brick
-// of a z column of a 2^n grid slab onto one line.
 std::size_t BurstCounter::cache_line(std::uint64_t index) const {
-  if (cache_lines_ == 1) return 0;
-  return static_cast<std::size_t>((index * 0x9E3779B97F4A7C15ull) >> (64 - cache_bits_));
+  return brick_cache_line(index, cache_bits_);
 }
 
 void BurstCounter::fetch(Reuse r, const BurstAddress& b) {

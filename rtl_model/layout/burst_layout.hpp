@@ -35,6 +35,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -163,6 +164,16 @@ struct Fetch {
   std::uint64_t sample = 0;
   BurstAddress burst;
 };
+
+// The line of a direct-mapped brick cache of 2^cache_bits lines that holds
+// the brick of channel index `index`: Fibonacci hashing (Knuth, TAOCP vol. 3,
+// §6.4), the top bits of index x 2^64 / golden ratio. The brick index's low
+// bits alone would map every brick of a z column of a 2^n grid slab onto one
+// line. The burst study's counter and the DDR4 card's cache share it.
+inline std::size_t brick_cache_line(std::uint64_t index, int cache_bits) {
+  if (cache_bits == 0) return 0;
+  return static_cast<std::size_t>((index * 0x9E3779B97F4A7C15ull) >> (64 - cache_bits));
+}
 
 class BurstCounter {
  public:

@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "refmodel/error.hpp"
+#include "rtl_model/pipeline/burst_config.hpp"
 
 namespace voxcast::rtl::pipeline {
 
@@ -79,6 +80,13 @@ std::ostream& operator<<(std::ostream& os, const PipelineConfig& c) {
             << ", " << c.latency << "; controller queue " << c.controller.queue_depth
             << ", return " << c.controller.return_depth
             << (c.controller.auto_precharge ? ", auto precharge" : ", open page");
+}
+
+std::ostream& operator<<(std::ostream& os, const BurstCardConfig& c) {
+  return os << "DDR4 card: " << c.pipelines << " pipeline(s) at a " << c.core_period_ps
+            << " ps core clock, brick cache " << c.cache_lines << " lines per channel, " << c.mshrs
+            << " miss registers, miss queue " << c.miss_queue << ", crossing FIFOs "
+            << c.crossing_depth << " deep (" << c.sync_stages << " synchroniser stages)";
 }
 
 }  // namespace voxcast::rtl::pipeline

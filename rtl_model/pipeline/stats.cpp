@@ -1,5 +1,6 @@
 #include "rtl_model/pipeline/stats.hpp"
 
+#include <algorithm>
 #include <iomanip>
 #include <ostream>
 
@@ -63,7 +64,29 @@ std::uint64_t RtlStats::bytes_read() const {
   for (const auto& d : dimms) n += d.controller.bytes;
   return n;
 }
-double RtlStats::peak_bytes() const { return 4.0 * 8.0 * static_cast<double>(cycles); }
+double RtlStats::samples_per_second() const {
+  return ratio(static_cast<double>(samples), seconds());
+}
+double RtlStats::peak_bytes() const { return bus_bytes_per_cycle * static_cast<double>(cycles); }
+
+double CardStats::cache_hit_rate() const {
+  return ratio(static_cast<double>(cache_hits),
+               static_cast<double>(cache_hits + cache_pending_hits + cache_misses));
+}
+double CardStats::channel_utilisation() const {
+  std::uint64_t busiest = 0;
+  for (const auto b : bursts) busiest = std::max(busiest, b);
+  return ratio(static_cast<double>(busiest * static_cast<std::uint64_t>(burst_clocks)),
+               static_cast<double>(memory_cycles));
+}
+double CardStats::pipeline_utilisation(Cycle core_cycles) const {
+  return ratio(static_cast<double>(busiest_pipeline_issues), static_cast<double>(core_cycles));
+}
+const char* CardStats::bound(Cycle core_cycles) const {
+  const double pipes = pipeline_utilisation(core_cycles), channels = channel_utilisation();
+  if (std::max(pipes, channels) < kSaturated) return "latency";
+  return channels > pipes ? "channels" : "pipelines";
+}
 double RtlStats::bandwidth_utilisation() const {
   return ratio(static_cast<double>(bytes_read()), peak_bytes());
 }
@@ -88,6 +111,19 @@ std::ostream& operator<<(std::ostream& os, const RtlStats& s) {
     os << "row-hit issue: " << s.issue_bypasses
        << " samples issued ahead of the oldest ready ray (at most " << s.issue_longest_bypass
        << " in a row)\n";
+  if (s.card.pipelines > 0) {
+    const CardStats& k = s.card;
+    os << "DDR4 card: " << k.pipelines << " pipeline(s) at " << s.clock_mhz << " MHz, channels at "
+       << k.memory_mhz << " MHz (" << k.memory_cycles << " memory cycles); "
+       << s.samples_per_second() * 1e-9 << " G samples/s\n"
+       << "  brick cache (" << k.cache_lines << " lines per channel): hits " << k.cache_hits
+       << ", pending hits " << k.cache_pending_hits << ", misses " << k.cache_misses
+       << " (hit rate " << k.cache_hit_rate() << "); bursts per channel";
+    for (const auto b : k.bursts) os << " " << b;
+    os << "\n  bound: " << k.bound(s.cycles) << " (busiest channel's data bus "
+       << 100.0 * k.channel_utilisation() << "% busy, busiest pipeline issuing "
+       << 100.0 * k.pipeline_utilisation(s.cycles) << "% of clocks)\n";
+  }
   os << "memory: row hits " << s.row_hits() << ", misses " << s.row_misses() << ", conflicts "
      << s.row_conflicts() << " (hit rate " << s.row_hit_rate() << "); activates "
      << s.activates() << ", refreshes " << s.refreshes() << "; " << s.bandwidth_mb_s()

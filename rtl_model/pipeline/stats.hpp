@@ -44,6 +44,32 @@ struct NamedFifoStats {
   sim::FifoStats stats;
 };
 
+// The DDR4 card (burst_card.hpp); pipelines = 0 on the SDR card.
+struct CardStats {
+  int pipelines = 0;
+  double memory_mhz = 0.0;
+  Cycle memory_cycles = 0;  // memory clocks of the frame
+  int burst_clocks = 4;     // data-bus clocks per burst (BL/2)
+  int burst_bytes = 64;
+  std::uint32_t cache_lines = 0;  // per channel
+  // Brick cache look-ups (one per burst a sample needs): a hit, a burst
+  // already requested by an earlier sample, or a miss (one request each).
+  std::uint64_t cache_hits = 0, cache_pending_hits = 0, cache_misses = 0;
+  std::array<std::uint64_t, 4> bursts{};      // requested per channel
+  std::uint64_t busiest_pipeline_issues = 0;  // clocks the busiest issue stage issued or leapt
+
+  double cache_hit_rate() const;  // hits / look-ups (pending hits are not hits)
+  // The busiest channel's data-bus clocks over the frame's memory clocks.
+  double channel_utilisation() const;
+  // The busiest pipeline's issue clocks over the frame's core clocks.
+  double pipeline_utilisation(Cycle core_cycles) const;
+  // "pipelines" or "channels": the more utilised of the two, if it is at
+  // least kSaturated busy; else "latency" (neither is: the samples wait for
+  // their bursts longer than the ray slots and sample buffers cover).
+  static constexpr double kSaturated = 0.9;
+  const char* bound(Cycle core_cycles) const;
+};
+
 struct RtlStats {
   double clock_mhz = 0.0;  // core = SDRAM clock
   Cycle cycles = 0;        // the frame, first ray setup to the last pixel written
@@ -62,6 +88,10 @@ struct RtlStats {
   std::array<DimmReport, 4> dimms{};
   StallStats stalls;
   std::vector<NamedFifoStats> fifos;
+  CardStats card;
+  // The memory's peak in bytes per core clock: four DIMMs of 8 bytes on the
+  // SDR card; the DDR4 card sets its own.
+  double bus_bytes_per_cycle = 32.0;
   // The simulation, not the card: cycles evaluated one by one (the rest were
   // fast-forwarded, PipelineConfig::fast_forward).
   Cycle evaluated_cycles = 0;
@@ -73,6 +103,7 @@ struct RtlStats {
   double ns_per_sample() const;
   double ns_per_issued_sample() const;
   double samples_per_cycle() const;
+  double samples_per_second() const;
   // Over all four DIMMs.
   std::uint64_t row_hits() const;
   std::uint64_t row_misses() const;
@@ -81,7 +112,7 @@ struct RtlStats {
   std::uint64_t activates() const;
   std::uint64_t refreshes() const;
   std::uint64_t bytes_read() const;
-  // Peak: 8 bytes per clock per DIMM.
+  // Peak: bus_bytes_per_cycle per clock.
   double peak_bytes() const;
   double bandwidth_utilisation() const;
   double bandwidth_mb_s() const;

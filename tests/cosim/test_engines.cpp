@@ -207,15 +207,14 @@ namespace VOXCAST_UNITY_ID {
 // one key list (refmodel/scene/rtl_keys.hpp): every key the reader accepts,
 // with the value the scene set, and the written scene reads back the same.
 TEST(RtlKeys, ReportAndWrittenSceneCarryEveryKeyWithItsValue) {
-  const ref::Scene s = ref::default_scene({"rtl.scheduler=fr-fcfs", "rtl.reorder_window=4",
-                                           "rtl.starvation_limit=9", "rtl.layout=bricked",
-                                           "rtl.brick=[4, 2, 8]", "rtl.ray_slots=32",
-                                           "rtl.queue_depth=12", "rtl.return_depth=6",
-                                           "rtl.issue=row-hit", "rtl.issue_bypass_limit=11",
-                                           "rtl.auto_precharge=true"});
+  const ref::Scene s = ref::default_scene(
+      {"rtl.scheduler=fr-fcfs", "rtl.reorder_window=4", "rtl.starvation_limit=9",
+       "rtl.layout=bricked", "rtl.brick=[4, 2, 8]", "rtl.ray_slots=32", "rtl.queue_depth=12",
+       "rtl.return_depth=6", "rtl.issue=row-hit", "rtl.issue_bypass_limit=11",
+       "rtl.auto_precharge=true", "rtl.pipelines=3"});
   const nlohmann::json j = cosim::rtl_desc_json(s.rtl);
   const std::vector<std::string> names = ref::rtl_key_names();
-  EXPECT_EQ(names.size(), 19u);
+  EXPECT_EQ(names.size(), 20u);
   EXPECT_EQ(j.size(), names.size());
   for (const std::string& k : names) EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j.at("scheduler"), "fr-fcfs");
@@ -227,6 +226,7 @@ TEST(RtlKeys, ReportAndWrittenSceneCarryEveryKeyWithItsValue) {
   EXPECT_EQ(j.at("issue"), "row-hit");
   EXPECT_EQ(j.at("issue_bypass_limit"), 11);
   EXPECT_EQ(j.at("auto_precharge"), true);
+  EXPECT_EQ(j.at("pipelines"), 3);
   const ref::Scene t = ref::parse_scene(ref::scene_to_toml(s), "round trip", ".");
   EXPECT_EQ(cosim::rtl_desc_json(t.rtl), j);
 }
