@@ -912,8 +912,10 @@ void random_pairs(std::uint64_t seed, int count) {
     if constexpr (!decltype(p)::is_signed && decltype(p)::width == 128) {
       expect_raw(st, "*", ra, rb, static_cast<i128>(p.raw() >> 64),
                  static_cast<i128>((static_cast<u128>(ra) * static_cast<u128>(rb)) >> 64));
+      // The low word of the unsigned product (as i128, ra * rb overflows: UB).
       expect_raw(st, "*lo", ra, rb, static_cast<i128>(static_cast<std::uint64_t>(p.raw())),
-                 static_cast<i128>(static_cast<std::uint64_t>(ra * rb)));
+                 static_cast<i128>(static_cast<std::uint64_t>(
+                     static_cast<u128>(ra) * static_cast<u128>(rb))));
     } else {
       expect_raw(st, "*", ra, rb, static_cast<i128>(p.raw()), ra * rb);
     }
