@@ -15,6 +15,10 @@
 #include "rtl_model/scene_config.hpp"
 
 namespace voxcast::cosim {
+// A named namespace around the file's helpers: in CI's unity build this file
+// and report.cpp share a translation unit, whose anonymous namespace has its
+// own bits_for.
+namespace card_pricing {
 namespace {
 
 int bits_for(long long n) { return hls::widths::bits_for(n); }
@@ -112,6 +116,15 @@ bool shared_by_two(const Op& op, const Resources& r) {
 bool fits(const Resources& r, const Part& part) { return binding_share(r, part) <= 1.0; }
 
 }  // namespace
+}  // namespace card_pricing
+
+using card_pricing::burst_address_bits;
+using card_pricing::channel_items;
+using card_pricing::ddr4_controller;
+using card_pricing::fits;
+using card_pricing::issue_items;
+using card_pricing::kControllerSource;
+using card_pricing::shared_by_two;
 
 Resources card_total(const CardPrice& c, int n) {
   Resources t = static_cast<double>(n) * c.per_pipeline;
