@@ -133,6 +133,12 @@ Resources card_total(const CardPrice& c, int n) {
   return t;
 }
 
+Resources ported_card_total(const CardPrice& c, int n) {
+  Resources t = card_total(c, n);
+  t += static_cast<double>(c.channels * (n - 1)) * c.cache_store;
+  return t;
+}
+
 CardPrice price_card(const ref::Elaboration& e, const rtl::pipeline::PipelineConfig& pipeline,
                      const rtl::pipeline::BurstCardConfig& card, const Part& part,
                      const std::string& board) {
@@ -163,13 +169,18 @@ CardPrice price_card(const ref::Elaboration& e, const rtl::pipeline::PipelineCon
   for (const CardItem& it : c.issue) c.per_pipeline += it.res;
   c.channel = channel_items(card, address_bits, tag_bits, part);
   for (const CardItem& it : c.channel) c.per_channel += it.res;
+  // The first two items are the lines and the tags (channel_items).
+  c.cache_store = c.channel[0].res;
+  c.cache_store += c.channel[1].res;
   c.controller = ddr4_controller();
   c.controller_source = kControllerSource;
   c.per_channel += c.controller;
   c.total = card_total(c, c.pipelines);
   c.fits = fits(c.total, part);
-  for (int n = 1; n <= CardPrice::kMaxPipelines; ++n)
+  for (int n = 1; n <= CardPrice::kMaxPipelines; ++n) {
     if (fits(card_total(c, n), part)) c.largest_fit = n;
+    if (fits(ported_card_total(c, n), part)) c.ported_largest_fit = n;
+  }
   return c;
 }
 

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -809,6 +810,16 @@ std::string percent(double share) {
   return s.str();
 }
 
+// "534 FF, 36 URAM": the resources a figure uses, in words.
+std::string res_words(const Resources& x) {
+  std::string s;
+  const std::pair<double, const char*> parts[] = {
+      {x.luts, "LUT"}, {x.ffs, "FF"}, {x.dsps, "DSP"}, {x.brams, "RAMB18"}, {x.urams, "URAM"}};
+  for (const auto& [n, name] : parts)
+    if (n > 0) s += (s.empty() ? "" : ", ") + std::to_string(std::lround(n)) + " " + name;
+  return s.empty() ? "nothing" : s;
+}
+
 void card_markdown(std::ostream& s, const CardPrice& c, const Part& p) {
   const bool u = p.urams > 0;
   s << "\n## The DDR4 card: " << c.pipelines << " pipeline" << (c.pipelines == 1 ? "" : "s")
@@ -858,9 +869,16 @@ void card_markdown(std::ostream& s, const CardPrice& c, const Part& p) {
   for (const CardItem& it : c.issue)
     s << "| " << it.op.what << " | " << it.op.count << " | " << op_shape(it.op) << " | "
       << res_cells(it.res, u) << " |\n";
-  s << "\nNot priced: the brick caches' look-up ports (the cycle model lets every pipeline look "
-       "up its sample's bursts in a channel's cache in the same clock; the tag and line stores "
-       "above have the block RAM's two ports), the PCIe shell and the host interface.\n";
+  const Resources ported = ported_card_total(c, c.pipelines);
+  s << "\n**The look-up ports.** The cycle model lets every pipeline look up its sample's bursts "
+       "in a channel's cache in the same clock; the tag and line stores above have the block "
+       "RAM's two ports. A sample's cell needs at most two bursts of one channel, so N pipelines "
+       "need N dual-port copies of each channel's lines and tags ("
+    << res_words(c.cache_store) << " a copy): at N = " << c.pipelines << " the card then takes "
+    << binding_resource(ported, p) << " at " << percent(binding_share(ported, p))
+    << ", and the largest N that fits is **" << c.ported_largest_fit
+    << "** (banked caches, whose conflicts the cycle model does not simulate, lie between).\n\n"
+       "Not priced: the PCIe shell and the host interface.\n";
 }
 
 }  // namespace
@@ -950,6 +968,8 @@ nlohmann::json card_json(const CardPrice& c, const Part& p) {
           {"binding_share", binding_share(c.total, p)},
           {"fits", c.fits},
           {"largest_fit", c.largest_fit},
+          {"cache_store", res_json(c.cache_store)},
+          {"ported_largest_fit", c.ported_largest_fit},
           {"by_pipelines", by_n}};
 }
 

@@ -141,10 +141,19 @@ struct CardPrice {
   Resources total;         // card_total(*this, pipelines)
   bool fits = false;       // total within the part in every resource
   int largest_fit = 0;     // the largest N in 1..kMaxPipelines that fits; 0 if none
+  // The bound the look-up ports set, which the cycle model does not (it lets
+  // any number of pipelines look up a channel's cache in one clock): a
+  // sample's cell needs at most two bursts of one channel (its bricks along
+  // x; the channel is the bricks' y, z parity), so N pipelines need 2N reads
+  // of each channel's tags and lines per clock, N dual-port copies of them.
+  Resources cache_store;   // per channel, one copy: the lines and the tags
+  int ported_largest_fit = 0;  // the largest N that fits with N copies
   static constexpr int kMaxPipelines = 64;  // rtl.pipelines' range
 };
 // n·per_pipeline + ceil(n/2)·per_pair + channels·per_channel.
 Resources card_total(const CardPrice& c, int n);
+// card_total(c, n) + channels·(n − 1)·cache_store: a read port per look-up.
+Resources ported_card_total(const CardPrice& c, int n);
 // Throws voxcast::Error unless 1 <= pipelines <= kMaxPipelines.
 CardPrice price_card(const ref::Elaboration& e, const rtl::pipeline::PipelineConfig& pipeline,
                      const rtl::pipeline::BurstCardConfig& card, const Part& part,

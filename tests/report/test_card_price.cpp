@@ -155,6 +155,31 @@ TEST(CardPrice, LargestFitIsTheLastNWithinThePart) {
   EXPECT_STREQ(cosim::binding_resource(a7.total, cosim::find_part("xc7a200t")), "BRAM");
 }
 
+// A read port per look-up: N dual-port copies of each channel's lines (32
+// URAM) and tags (4 URAM), so 144·N URAMs on the card; the vizard2 design's
+// tables use no URAM, so the URAMs allow floor(1280 / 144) = 8 pipelines.
+TEST(CardPrice, PortedCachesAreNCopiesOfEachChannelsStores) {
+  const CardPrice c = u250_card(1);
+  EXPECT_EQ(c.cache_store.urams, 36);
+  for (int n : {1, 2, 5, 16}) {
+    Resources expect = cosim::card_total(c, n);
+    expect += static_cast<double>(4 * (n - 1)) * c.cache_store;
+    expect_same(cosim::ported_card_total(c, n), expect, "N = " + std::to_string(n));
+  }
+  rtl::RtlConfig cfg = rtl::rtl_config_for_board(rtl::board::load_board("alveo_u250"));
+  const ref::TransferFunction tf({{0, {1, 0.5, 0.2}, 0.0}, {100, {1, 0.8, 0.9}, 0.5}},
+                                 ref::TfInterpolation::Ramp, ref::Material{});
+  const ref::Elaboration v2 = ref::elaborate(kVizard2, ref::RenderMode::Shaded,
+                                             ref::Projection::Perspective, 0.98, tf,
+                                             {kVizard2.value_bits, 255u, 100.0});
+  const CardPrice p = cosim::price_card(v2, cfg.pipeline, cfg.card, cosim::find_part("xcu250"),
+                                        "alveo_u250");
+  ASSERT_EQ(p.per_pair.urams + p.per_pipeline.urams, 0);
+  EXPECT_EQ(cosim::ported_card_total(p, 8).urams, 144 * 8);
+  EXPECT_EQ(p.ported_largest_fit, 1280 / 144);
+  EXPECT_LT(p.ported_largest_fit, p.largest_fit);
+}
+
 TEST(CardPrice, ImpossiblePipelineCountIsOneError) {
   rtl::RtlConfig c = rtl::rtl_config_for_board(rtl::board::load_board("alveo_u250"));
   c.card.pipelines = 65;
