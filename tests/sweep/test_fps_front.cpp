@@ -94,4 +94,19 @@ TEST(FpsFront, SweepOverPipelinesOnTheU250PricesTheCard) {
   EXPECT_EQ(front[1], "yes");
 }
 
+// The shipped sweep spec (docs/performance.md §14): regress does not read
+// scenes/sweeps/, so this keeps it parsing, on the U250, for every point of
+// its documented --vary (parsing only: the sweep itself takes seconds).
+TEST(FpsFront, ShippedU250SweepSpecParses) {
+  const Plan plan = make_plan(VOXCAST_SOURCE_DIR "/scenes/sweeps/u250-pipelines.toml", {},
+                              {"rtl.pipelines=1,2,4,8,16,32,64"}, {});
+  ASSERT_EQ(plan.size(), 7u);
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    const voxcast::ref::Scene s = plan.scene(i);
+    EXPECT_EQ(s.rtl.board, "alveo_u250");
+    EXPECT_EQ(s.rtl.pipelines, 1 << i);
+    EXPECT_EQ(s.precision_name, "vizard2");
+  }
+}
+
 }  // namespace
