@@ -188,23 +188,33 @@ std::string sweep_page(const sweep::Table& t) {
   std::string body = "<p>" + html::escape("scene " + t.meta.value("scene", std::string()) + ", " +
                                           std::to_string(t.rows.size()) + " points") +
                      "</p>\n";
-  const std::size_t status = t.column("status"), psnr = t.column("psnr_db");
+  const std::size_t status = t.column("status");
   struct Plot {
     const char* x_column;
+    const char* y_column;
     const char* front_column;
     const char* x_label;
+    const char* y_label;
+    const char* what;  // the title: WHAT and X_LABEL
   };
-  for (const Plot& p : {Plot{"rtl_fps", "pareto_psnr_fps", "rtl frames/s (cycle model)"},
-                        Plot{"part_pct", "pareto_psnr_resources", "share of the part used (%)"}}) {
-    const std::size_t xc = t.column(p.x_column), front = t.column(p.front_column);
+  constexpr const char* kPsnr = "PSNR against the truth (dB)";
+  for (const Plot& p :
+       {Plot{"rtl_fps", "psnr_db", "pareto_psnr_fps", "rtl frames/s (cycle model)", kPsnr,
+             "PSNR against the truth"},
+        Plot{"part_pct", "psnr_db", "pareto_psnr_resources", "share of the part used (%)", kPsnr,
+             "PSNR against the truth"},
+        Plot{"part_max_pct", "rtl_fps", "pareto_fps_resources",
+             "the scarcest resource's share of the part (%)", "rtl frames/s (cycle model)",
+             "rtl frames/s"}}) {
+    const std::size_t xc = t.column(p.x_column), yc = t.column(p.y_column),
+                      front = t.column(p.front_column);
     std::vector<html::ScatterPoint> pts;
     for (const sweep::Row& r : t.rows) {
-      const auto x = r.cells[xc].value(), y = r.cells[psnr].value();
+      const auto x = r.cells[xc].value(), y = r.cells[yc].value();
       if (r.cells[status].text == "ok" && x && y && std::isfinite(*y))
         pts.push_back({*x, *y, sweep::point_label(t, r), r.cells[front].text == "yes"});
     }
-    body += html::scatter(std::string("PSNR against the truth and ") + p.x_label, p.x_label,
-                          "PSNR against the truth (dB)", pts);
+    body += html::scatter(std::string(p.what) + " and " + p.x_label, p.x_label, p.y_label, pts);
   }
   std::vector<std::string> head;
   for (const sweep::Column& c : t.columns) head.push_back(c.unit.empty() ? c.name : c.name + " (" + c.unit + ")");

@@ -86,12 +86,23 @@ std::vector<Cell> measure_rtl_cells(const PointContext& p) {
 
 // The resource model of `voxcast report` (docs/resources.md) for the point's
 // elaborated design, on the sweep's part (--part, checked by run_sweep).
+// On a DDR4 board (rtl.board = "alveo_u250") the design is the card: N =
+// rtl.pipelines pipelines, their shared tables and the four channels' caches,
+// crossings and controllers (cosim/hardware/card_price.cpp), so a sweep over
+// rtl.pipelines prices what it measures.
 std::vector<Cell> measure_resource_cells(const PointContext& p) {
   const Part& part = find_part(p.part);
-  const ResourceReport r = estimate_resources(
-      ref::elaborate(p.scene, p.volume.volume, p.volume.gradients), part);
-  return {Cell::txt(part.name), Cell::num(r.total.luts), Cell::num(r.total.ffs), Cell::num(r.total.dsps),
-          Cell::num(r.total.brams), Cell::num(100.0 * cost(r.total, part))};
+  const ref::Elaboration e = ref::elaborate(p.scene, p.volume.volume, p.volume.gradients);
+  Resources total = estimate_resources(e, part).total;
+  if (const std::optional<CardPrice> card = price_scene_card(p.scene, e, part)) total = card->total;
+  return {Cell::txt(part.name),
+          Cell::num(total.luts),
+          Cell::num(total.ffs),
+          Cell::num(total.dsps),
+          Cell::num(total.brams),
+          Cell::num(total.urams),
+          Cell::num(100.0 * cost(total, part)),
+          Cell::num(100.0 * binding_share(total, part))};
 }
 
 // --- Shared inputs -----------------------------------------------------------------
@@ -412,18 +423,25 @@ const std::vector<ColumnGroup>& column_groups() {
         {"hazard_keys", Kind::Text, "", "the scene keys of the hazards, space-separated"}},
        measure_hazard_cells},
       {"rtl",
-       {{"rtl_fps", Kind::Number, "frames/s", "the cycle model's frames per second at 100 MHz"},
+       {{"rtl_fps", Kind::Number, "frames/s",
+         "the cycle model's frames per second at the board's core clock (100 MHz on the VIZARD II "
+         "card, 300 MHz on the U250)"},
         {"rtl_ns_per_sample", Kind::Number, "ns", "the cycle model's ns per composited sample"},
         {"rtl_cycles", Kind::Number, "cycles", "the cycle model's cycles for the frame"}},
        measure_rtl_cells},
       {"resources",
        {{"part", Kind::Text, "", "the part of the resource columns (--part)"},
-        {"luts", Kind::Number, "LUT", "estimated LUTs (resource model, docs/resources.md)"},
+        {"luts", Kind::Number, "LUT",
+         "estimated LUTs (resource model, docs/resources.md); on a DDR4 board the whole card: "
+         "N pipelines and the four channels"},
         {"ffs", Kind::Number, "FF", "estimated flip-flops"},
-        {"dsps", Kind::Number, "DSP48E1", "DSP slices"},
+        {"dsps", Kind::Number, "DSP", "DSP slices (DSP48E1, DSP48E2 or MULT18X18)"},
         {"brams", Kind::Number, "RAMB18", "block RAMs"},
+        {"urams", Kind::Number, "URAM288", "UltraRAM blocks (0 on a part without)"},
         {"part_pct", Kind::Number, "%",
-         "the part's share used: voxcast report's cost, the sum of the four resources' shares"}},
+         "the part's share used: voxcast report's cost, the sum of the resources' shares"},
+        {"part_max_pct", Kind::Number, "%",
+         "the scarcest resource's share of the part (over 100: does not fit)"}},
        measure_resource_cells},
   };
   return groups;
@@ -437,6 +455,10 @@ const std::vector<Front>& pareto_fronts() {
       {{"pareto_psnr_resources", Kind::Text, "",
         "on the Pareto front of PSNR against the truth (max) and the part share (min)"},
        {{"psnr_db", true}, {"part_pct", false}}},
+      {{"pareto_fps_resources", Kind::Text, "",
+        "on the Pareto front of rtl frames/s (max) and the scarcest resource's share of the part "
+        "(min)"},
+       {{"rtl_fps", true}, {"part_max_pct", false}}},
   };
   return fronts;
 }

@@ -95,7 +95,7 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
                                      std::vector<std::string>& warnings) {
   namespace fs = std::filesystem;
   const auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
-  const std::size_t status = t.column("status"), psnr = t.column("psnr_db");
+  const std::size_t status = t.column("status");
   const auto ok = [&](const Row& r) { return r.cells[status].text == "ok"; };
 
   std::vector<std::string> plots;  // stems
@@ -104,35 +104,47 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
      << "set grid\nset key below\n";
   std::vector<std::pair<std::string, std::string>> bodies;  // stem, plot commands
 
-  // PSNR against a cost or speed column, its Pareto front as a line.
+  // A figure of merit (PSNR, frames/s) against a cost or speed column, its
+  // Pareto front as a line. Labels are gnuplot single-quoted strings: no
+  // apostrophes in them.
   const auto front_plot = [&](const std::string& stem, const std::string& x_column,
-                              const std::string& front_column, const std::string& xlabel) {
-    const std::size_t xc = t.column(x_column), front = t.column(front_column);
+                              const std::string& y_column, const std::string& front_column,
+                              const std::string& xlabel, const std::string& ylabel) {
+    const std::size_t xc = t.column(x_column), yc = t.column(y_column),
+                      front = t.column(front_column);
     std::vector<PlotPoint> pf;
     for (const Row& r : t.rows) {
-      const auto x = r.cells[xc].value(), y = r.cells[psnr].value();
+      const auto x = r.cells[xc].value(), y = r.cells[yc].value();
       if (ok(r) && x && y && std::isfinite(*y))
         pf.push_back({*x, *y, r.cells[front].text == "yes", point_label(t, r)});
     }
     std::sort(pf.begin(), pf.end(),
               [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
     if (pf.empty()) {
-      warnings.push_back("no point has both a finite PSNR and " + x_column + ": " + stem +
-                         " not plotted");
+      // Only PSNR plots warn: a sweep without rtl figures (a profile the rtl
+      // engine is not compiled for) has no frames/s front to draw.
+      if (y_column == "psnr_db")
+        warnings.push_back("no point has both a finite PSNR and " + x_column + ": " + stem +
+                           " not plotted");
       return;
     }
     write_dat(path(stem + ".dat"), pf, false);
     write_dat(path(stem + "_front.dat"), pf, true);
-    bodies.push_back({stem, "set xlabel '" + xlabel +
-                                "'\nset ylabel 'PSNR against the truth (dB)'\n"
+    bodies.push_back({stem, "set xlabel '" + xlabel + "'\nset ylabel '" + ylabel + "'\n" +
                                 "plot '" + stem + ".dat' using 1:2 with points pt 7 title 'points', \\\n"
                                 "     '" + stem + "_front.dat' using 1:2 with linespoints lw 2 pt 6 "
                                 "ps 2 title 'Pareto front'" + labels_layer(stem + ".dat") + "\n"});
   };
-  front_plot("psnr_vs_fps", "rtl_fps", "pareto_psnr_fps", "rtl frames/s (cycle model, 100 MHz)");
-  front_plot("psnr_vs_resources", "part_pct", "pareto_psnr_resources",
-             "share of the " + t.meta.value("part", std::string("xc7a200t")) +
-                 " used (report cost: sum of LUT, FF, DSP, RAM shares, %)");
+  const std::string psnr_label = "PSNR against the truth (dB)";
+  const std::string part = t.meta.value("part", std::string("xc7a200t"));
+  front_plot("psnr_vs_fps", "rtl_fps", "psnr_db", "pareto_psnr_fps",
+             "rtl frames/s (cycle model, at the core clock of the board)", psnr_label);
+  front_plot("psnr_vs_resources", "part_pct", "psnr_db", "pareto_psnr_resources",
+             "share of the " + part + " used (report cost: sum of LUT, FF, DSP, RAM shares, %)",
+             psnr_label);
+  front_plot("fps_vs_resources", "part_max_pct", "rtl_fps", "pareto_fps_resources",
+             "share of the " + part + " taken by its scarcest resource (%)",
+             "rtl frames/s (cycle model, at the core clock of the board)");
   // PSNR against each numeric axis.
   const std::size_t axes = t.meta.at("axes").size();
   for (std::size_t a = 0; a < axes; ++a) {
@@ -142,7 +154,7 @@ std::vector<std::string> write_plots(const Table& t, const std::string& dir,
     for (const Row& r : t.rows) {
       double x = 0;
       if (!is_number(r.cells[a].text, x)) numeric = false;
-      const auto y = r.cells[psnr].value();
+      const auto y = r.cells[t.column("psnr_db")].value();
       if (numeric && ok(r) && y && std::isfinite(*y)) pts.push_back({x, *y, false, point_label(t, r)});
     }
     if (!numeric || pts.empty()) continue;

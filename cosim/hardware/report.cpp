@@ -4,7 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -473,6 +475,15 @@ const std::vector<Part>& parts() {
       // DS180 table 4: XC7K325T, 50,950 slices, 840 DSP48E1, 445 RAMB36E1 = 890 RAMB18E1.
       {"xc7k325t", Family::Series7, "Xilinx DS180 7 Series, table 4 (Kintex-7)", 203800, 407600,
        840, 890},
+      // The Alveo U250's device (constraints/boards/alveo_u250.toml: xcu250-figd2104-2L-e), a
+      // VU13P-class Virtex UltraScale+: AMD DS962 (Alveo U200 and U250 Data Center Accelerator
+      // Cards Data Sheet), table 1, and DS923 (Virtex UltraScale+ FPGA Data Sheet), the VU13P
+      // column: 1,728K LUT6, 3,456K FF (2 per LUT), 12,288 DSP48E2, 2,688 RAMB36E2 (94.5 Mb) =
+      // 5,376 RAMB18E2, 1,280 URAM288 (360 Mb). The figures as those data sheets list them; not
+      // re-read from the PDFs for this table (docs/resources.md, "The XCU250").
+      {"xcu250", Family::UltraScalePlus,
+       "AMD DS962 Alveo U200/U250 data sheet, table 1; DS923 Virtex UltraScale+ (VU13P)", 1728000,
+       3456000, 12288, 5376, 1280},
   };
   return k;
 }
@@ -485,12 +496,26 @@ const Part& find_part(const std::string& name) {
   throw Error("unknown part \"" + name + "\" (known: " + list + ")");
 }
 
+const Part& find_device_part(const std::string& device) {
+  for (const Part& p : parts())
+    if (device == p.name || device.rfind(p.name + "-", 0) == 0) return p;
+  std::string list;
+  for (const Part& p : parts()) list += (list.empty() ? "" : ", ") + p.name;
+  throw Error("the board's FPGA \"" + device + "\" is not a part voxcast report knows (known: " +
+              list + ")");
+}
+
 Resources& Resources::operator+=(const Resources& r) {
   luts += r.luts;
   ffs += r.ffs;
   dsps += r.dsps;
   brams += r.brams;
+  urams += r.urams;
   return *this;
+}
+
+Resources operator*(double n, const Resources& r) {
+  return {n * r.luts, n * r.ffs, n * r.dsps, n * r.brams, n * r.urams};
 }
 
 int dsp_count(const Op& m, Family f) {
@@ -501,6 +526,9 @@ int dsp_count(const Op& m, Family f) {
   const int sa = signed_width(m.a, m.a_signed);
   const int sb = signed_width(m.b, m.b_signed);
   if (f == Family::Virtex2) return limbs(sa, 18) * limbs(sb, 18);  // MULT18X18 (DS031)
+  // DSP48E2: 27 x 18 signed (UG579); either operand may take the 27-bit port.
+  if (f == Family::UltraScalePlus)
+    return std::min(limbs(sa, 27) * limbs(sb, 18), limbs(sa, 18) * limbs(sb, 27));
   // DSP48E1: 25 x 18 signed (UG479); either operand may take the 25-bit port.
   return std::min(limbs(sa, 25) * limbs(sb, 18), limbs(sa, 18) * limbs(sb, 25));
 }
@@ -515,8 +543,9 @@ int bram_count(int depth, int width, Family f) {
   if (depth <= 0 || width <= 0) return 0;
   // Small memories go to LUT RAM (distributed RAM): at most 2 kbit, or 32 deep.
   if (static_cast<long long>(depth) * width <= 2048 || depth <= 32) return 0;
-  // Virtex-E 4-kbit BlockSelectRAM (DS022); Virtex-II RAMB16 (DS031) and 7-series
-  // RAMB18E1 (UG473, simple dual port up to 36 bits) share the 18-kbit aspect ratios.
+  // Virtex-E 4-kbit BlockSelectRAM (DS022); Virtex-II RAMB16 (DS031), 7-series
+  // RAMB18E1 (UG473, simple dual port up to 36 bits) and UltraScale+ RAMB18E2
+  // (UG573, the same aspects) share the 18-kbit aspect ratios.
   static const std::vector<Aspect> kVirtexE = {{4096, 1}, {2048, 2}, {1024, 4}, {512, 8},
                                                {256, 16}};
   static const std::vector<Aspect> k18k = {{16384, 1}, {8192, 2}, {4096, 4}, {2048, 9},
@@ -530,8 +559,26 @@ int bram_count(int depth, int width, Family f) {
   return best;
 }
 
+int uram_count(int depth, int width, Family f) {
+  if (f != Family::UltraScalePlus || bram_count(depth, width, f) == 0) return 0;
+  // URAM288: one aspect, 4,096 x 72, cascaded in depth and placed side by side
+  // in width (UG573, "UltraRAM").
+  return ceil_div(depth, 4096) * ceil_div(width, 72);
+}
+
+bool prefers_uram(int depth, int width, const Part& part) {
+  if (part.urams <= 0 || part.brams <= 0) return false;
+  const int u = uram_count(depth, width, part.family);
+  if (u == 0) return false;
+  // URAM when it takes the smaller share of the part: a 4K-deep or deeper
+  // memory usually does (the brick cache's lines, the pre-integration table),
+  // a shallow one leaves most of a URAM's 4,096 rows empty and stays in BRAM.
+  return static_cast<double>(u) / part.urams <
+         static_cast<double>(bram_count(depth, width, part.family)) / part.brams;
+}
+
 Resources op_resources(const Op& op, Family f) {
-  const bool lut6 = f == Family::Series7;
+  const bool lut6 = f == Family::Series7 || f == Family::UltraScalePlus;
   Resources r;
   const double n = op.count;
   switch (op.kind) {
@@ -598,6 +645,16 @@ Resources op_resources(const Op& op, Family f) {
   return r;
 }
 
+Resources op_resources(const Op& op, const Part& part) {
+  Resources r = op_resources(op, part.family);
+  const bool memory = op.kind == OpKind::Rom || op.kind == OpKind::Ram || op.kind == OpKind::Fifo;
+  if (memory && r.brams > 0 && prefers_uram(op.a, op.b, part)) {
+    r.urams = op.count * uram_count(op.a, op.b, part.family);
+    r.brams = 0;
+  }
+  return r;
+}
+
 ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
   ResourceReport rep;
   rep.part = part;
@@ -605,7 +662,7 @@ ResourceReport estimate_resources(const ref::Elaboration& e, const Part& part) {
   const rtl::pipeline::PipelineConfig pc;
   for (UnitOps& u : unit_operators(e, pc)) {
     UnitResources ur{std::move(u), {}};
-    for (const Op& op : ur.unit.ops) ur.res += op_resources(op, part.family);
+    for (const Op& op : ur.unit.ops) ur.res += op_resources(op, part);
     rep.total += ur.res;
     rep.units.push_back(std::move(ur));
   }
@@ -626,6 +683,7 @@ ResourceReport estimate_resources(const ref::Scene& scene, const Part& part) {
   ResourceReport r = estimate_resources(ref::elaborate(scene, sv.volume, sv.gradients), part);
   r.scene = scene.origin;
   r.profile_name = scene.precision_name;
+  r.card = price_scene_card(scene, r.elaboration, part);
   return r;
 }
 
@@ -635,7 +693,45 @@ double cost(const Resources& r, const Part& p) {
   if (p.ffs > 0) c += r.ffs / p.ffs;
   if (p.dsps > 0) c += r.dsps / p.dsps;
   if (p.brams > 0) c += r.brams / p.brams;
+  if (p.urams > 0) c += r.urams / p.urams;
   return c;
+}
+
+namespace {
+struct Share {
+  const char* name;
+  double used;
+  int cap;
+};
+std::vector<Share> shares(const Resources& r, const Part& p) {
+  return {{"LUT", r.luts, p.luts},
+          {"FF", r.ffs, p.ffs},
+          {"DSP", r.dsps, p.dsps},
+          {"BRAM", r.brams, p.brams},
+          {"URAM", r.urams, p.urams}};
+}
+// used / cap; a resource the part lacks is infinitely scarce if used.
+double share_of(const Share& s) {
+  if (s.cap > 0) return s.used / s.cap;
+  return s.used > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+}
+}  // namespace
+
+double binding_share(const Resources& r, const Part& p) {
+  double m = 0.0;
+  for (const Share& s : shares(r, p)) m = std::max(m, share_of(s));
+  return m;
+}
+
+const char* binding_resource(const Resources& r, const Part& p) {
+  const char* name = "LUT";
+  double m = -1.0;
+  for (const Share& s : shares(r, p))
+    if (share_of(s) > m) {
+      m = share_of(s);
+      name = s.name;
+    }
+  return name;
 }
 
 namespace {
@@ -658,10 +754,16 @@ std::string op_shape(const Op& op) {
 }
 
 const char* bram_name(Family f) {
-  return f == Family::VirtexE ? "BlockRAM 4k" : f == Family::Virtex2 ? "RAMB16" : "RAMB18";
+  return f == Family::VirtexE   ? "BlockRAM 4k"
+         : f == Family::Virtex2 ? "RAMB16"
+         : f == Family::Series7 ? "RAMB18"
+                                : "RAMB18E2";
 }
 const char* dsp_name(Family f) {
-  return f == Family::VirtexE ? "MULT (none)" : f == Family::Virtex2 ? "MULT18X18" : "DSP48E1";
+  return f == Family::VirtexE   ? "MULT (none)"
+         : f == Family::Virtex2 ? "MULT18X18"
+         : f == Family::Series7 ? "DSP48E1"
+                                : "DSP48E2";
 }
 
 std::string pct(double used, int cap) {
@@ -675,9 +777,116 @@ std::string pct(double used, int cap) {
 
 }  // namespace
 
+namespace {
+
+// The columns of a resource row: LUT, FF, DSP, BRAM, and URAM on a part that has it.
+std::string res_cells(const Resources& x, bool uram) {
+  std::ostringstream s;
+  s << std::lround(x.luts) << " | " << std::lround(x.ffs) << " | " << std::lround(x.dsps) << " | "
+    << std::lround(x.brams);
+  if (uram) s << " | " << std::lround(x.urams);
+  return s.str();
+}
+
+std::string res_header(bool uram) {
+  return uram ? "LUT | FF | DSP | BRAM | URAM" : "LUT | FF | DSP | BRAM";
+}
+std::string res_rule(bool uram) {
+  return uram ? "---:|---:|---:|---:|---:" : "---:|---:|---:|---:";
+}
+
+std::string share_cells(const Resources& x, const Part& p) {
+  std::string s = pct(x.luts, p.luts) + " | " + pct(x.ffs, p.ffs) + " | " + pct(x.dsps, p.dsps) +
+                  " | " + pct(x.brams, p.brams);
+  if (p.urams > 0) s += " | " + pct(x.urams, p.urams);
+  return s;
+}
+
+std::string percent(double share) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << 100.0 * share << " %";
+  return s.str();
+}
+
+// "534 FF, 36 URAM": the resources a figure uses, in words.
+std::string res_words(const Resources& x) {
+  std::string s;
+  const std::pair<double, const char*> parts[] = {
+      {x.luts, "LUT"}, {x.ffs, "FF"}, {x.dsps, "DSP"}, {x.brams, "RAMB18"}, {x.urams, "URAM"}};
+  for (const auto& [n, name] : parts)
+    if (n > 0) s += (s.empty() ? "" : ", ") + std::to_string(std::lround(n)) + " " + name;
+  return s.empty() ? "nothing" : s;
+}
+
+void card_markdown(std::ostream& s, const CardPrice& c, const Part& p) {
+  const bool u = p.urams > 0;
+  s << "\n## The DDR4 card: " << c.pipelines << " pipeline" << (c.pipelines == 1 ? "" : "s")
+    << " on the " << p.name << "\n\n";
+  s << "Board `" << c.board << "` (rtl_model/pipeline/burst_card.hpp): N = " << c.pipelines
+    << " ray pipelines (`rtl.pipelines`), " << c.channels << " DDR4 channels, each with a "
+    << c.cache_lines << "-line brick cache of 64-byte lines. Total = N x per pipeline + "
+       "ceil(N/2) x per two pipelines + " << c.channels << " x per channel "
+       "(docs/resources.md, \"N pipelines on the U250\").\n\n";
+  s << "| part of the card | " << res_header(u) << " |\n|---|" << res_rule(u) << "|\n";
+  s << "| per pipeline: datapath units, ray slots, sample buffer, brick look-up | "
+    << res_cells(c.per_pipeline, u) << " |\n";
+  s << "| per two pipelines: tables read every clock, one dual-port block-RAM copy | "
+    << res_cells(c.per_pair, u) << " |\n";
+  s << "| per channel: brick cache, miss registers, crossings, DDR4 controller | "
+    << res_cells(c.per_channel, u) << " |\n";
+  s << "| **total, N = " << c.pipelines << "** | " << res_cells(c.total, u) << " |\n";
+  s << "| available | " << p.luts << " | " << p.ffs << " | " << p.dsps << " | " << p.brams;
+  if (u) s << " | " << p.urams;
+  s << " |\n| share | " << share_cells(c.total, p) << " |\n\n";
+  if (c.fits)
+    s << "**Fits**: the scarcest resource, " << binding_resource(c.total, p) << ", at "
+      << percent(binding_share(c.total, p)) << ".";
+  else
+    s << "**Does not fit**: N = " << c.pipelines << " needs " << binding_resource(c.total, p)
+      << " at " << percent(binding_share(c.total, p)) << " of the " << p.name << ".";
+  s << " The largest N that fits: **" << c.largest_fit << "**";
+  if (c.largest_fit > 0)
+    s << " (" << binding_resource(card_total(c, c.largest_fit), p) << " at "
+      << percent(binding_share(card_total(c, c.largest_fit), p)) << ")";
+  if (c.largest_fit == CardPrice::kMaxPipelines) s << ", the end of rtl.pipelines' range";
+  s << ".\n\n| N | " << res_header(u) << " | scarcest | its share |\n|---:|" << res_rule(u)
+    << "|---|---:|\n";
+  for (int n = 1; n <= CardPrice::kMaxPipelines; n *= 2) {
+    const Resources t = card_total(c, n);
+    s << "| " << n << " | " << res_cells(t, u) << " | " << binding_resource(t, p) << " | "
+      << percent(binding_share(t, p)) << " |\n";
+  }
+  s << "\n### Per channel\n\n| item | shape | " << res_header(u) << " |\n|---|---|"
+    << res_rule(u) << "|\n";
+  for (const CardItem& it : c.channel)
+    s << "| " << it.op.what << " | " << op_shape(it.op) << " | " << res_cells(it.res, u) << " |\n";
+  s << "| DDR4 controller and PHY (MIG) | " << c.controller_source << " | "
+    << res_cells(c.controller, u) << " |\n";
+  s << "\n### Per pipeline: the brick look-up\n\n| item | count | shape | " << res_header(u)
+    << " |\n|---|---:|---|" << res_rule(u) << "|\n";
+  for (const CardItem& it : c.issue)
+    s << "| " << it.op.what << " | " << it.op.count << " | " << op_shape(it.op) << " | "
+      << res_cells(it.res, u) << " |\n";
+  const Resources ported = ported_card_total(c, c.pipelines);
+  s << "\n**The look-up ports.** The cycle model lets every pipeline look up its sample's bursts "
+       "in a channel's cache in the same clock; the tag and line stores above have the block "
+       "RAM's two ports. A sample's cell needs at most two bursts of one channel, so N pipelines "
+       "need N dual-port copies of each channel's lines and tags ("
+    << res_words(c.cache_store) << " a copy): at N = " << c.pipelines << " the card then takes "
+    << binding_resource(ported, p) << " at " << percent(binding_share(ported, p))
+    << ", and the largest N that fits is **" << c.ported_largest_fit
+    << "** (banked caches, whose conflicts the cycle model does not simulate, lie between).\n\n"
+       "Not priced: the PCIe shell and the host interface.\n";
+}
+
+}  // namespace
+
 std::string report_markdown(const ResourceReport& r) {
   std::ostringstream s;
   const Family f = r.part.family;
+  const bool u = r.part.urams > 0;
   s << "# Resource report: " << r.scene << "\n\n";
   s << "Profile `" << r.profile_name << "`, part **" << r.part.name << "** (" << r.part.note
     << "). Estimates by the model of docs/resources.md.\n\n";
@@ -689,16 +898,19 @@ std::string report_markdown(const ResourceReport& r) {
   s << "| " << dsp_name(f) << " | " << std::lround(r.total.dsps) << " | " << r.part.dsps << " | "
     << pct(r.total.dsps, r.part.dsps) << " |\n";
   s << "| " << bram_name(f) << " | " << std::lround(r.total.brams) << " | " << r.part.brams
-    << " | " << pct(r.total.brams, r.part.brams) << " |\n\n";
+    << " | " << pct(r.total.brams, r.part.brams) << " |\n";
+  if (u)
+    s << "| URAM288 | " << std::lround(r.total.urams) << " | " << r.part.urams << " | "
+      << pct(r.total.urams, r.part.urams) << " |\n";
+  s << "\n";
   s << "Latency: ray set-up " << r.latency_ray_setup << " cycles; a sample " << r.latency_sample
     << " cycles from its address to the compositor (plus the SDRAM's, measured by the cycle "
        "model); initiation interval " << r.ii << " (one sample per clock).\n\n";
-  s << "## Units\n\n| unit | § | latency | II | LUT | FF | DSP | BRAM |\n"
-       "|---|---|---:|---:|---:|---:|---:|---:|\n";
-  for (const auto& u : r.units)
-    s << "| " << u.unit.name << " | " << u.unit.section << " | " << u.unit.latency << " | "
-      << u.unit.ii << " | " << std::lround(u.res.luts) << " | " << std::lround(u.res.ffs) << " | "
-      << std::lround(u.res.dsps) << " | " << std::lround(u.res.brams) << " |\n";
+  s << "## Units\n\n| unit | § | latency | II | " << res_header(u) << " |\n"
+    << "|---|---|---:|---:|" << res_rule(u) << "|\n";
+  for (const auto& x : r.units)
+    s << "| " << x.unit.name << " | " << x.unit.section << " | " << x.unit.latency << " | "
+      << x.unit.ii << " | " << res_cells(x.res, u) << " |\n";
   s << "\n## Left out (elaboration)\n\n";
   if (r.elaboration.omitted.empty()) s << "Nothing: the scene uses every unit.\n";
   for (const auto& o : r.elaboration.omitted) s << "- **" << o.unit << "**: " << o.reason << "\n";
@@ -708,31 +920,71 @@ std::string report_markdown(const ResourceReport& r) {
     << r.elaboration.profile.gradient_bits << "), classification table "
     << r.elaboration.class_entries << " entries (profile " << (1 << r.elaboration.profile.tf_addr_bits)
     << ").\n";
-  s << "\n## Operators\n\n| unit | operator | kind | count | shape | LUT | FF | DSP | BRAM |\n"
-       "|---|---|---|---:|---|---:|---:|---:|---:|\n";
-  for (const auto& u : r.units)
-    for (const Op& op : u.unit.ops) {
-      const Resources x = op_resources(op, f);
-      s << "| " << u.unit.name << " | " << op.what << " | " << to_string(op.kind) << " | "
-        << op.count << " | " << op_shape(op) << " | " << std::lround(x.luts) << " | "
-        << std::lround(x.ffs) << " | " << std::lround(x.dsps) << " | " << std::lround(x.brams)
+  s << "\n## Operators\n\n| unit | operator | kind | count | shape | " << res_header(u) << " |\n"
+    << "|---|---|---|---:|---|" << res_rule(u) << "|\n";
+  for (const auto& x : r.units)
+    for (const Op& op : x.unit.ops)
+      s << "| " << x.unit.name << " | " << op.what << " | " << to_string(op.kind) << " | "
+        << op.count << " | " << op_shape(op) << " | " << res_cells(op_resources(op, r.part), u)
         << " |\n";
-    }
+  if (r.card) card_markdown(s, *r.card, r.part);
   return s.str();
 }
 
+namespace {
+
+nlohmann::json res_json(const Resources& x) {
+  return {{"lut", x.luts}, {"ff", x.ffs}, {"dsp", x.dsps}, {"bram", x.brams}, {"uram", x.urams}};
+}
+
+nlohmann::json card_json(const CardPrice& c, const Part& p) {
+  using nlohmann::json;
+  auto items = [](const std::vector<CardItem>& v) {
+    json a = json::array();
+    for (const CardItem& it : v)
+      a.push_back({{"what", it.op.what}, {"kind", to_string(it.op.kind)}, {"count", it.op.count},
+                   {"a", it.op.a}, {"b", it.op.b}, {"resources", res_json(it.res)}});
+    return a;
+  };
+  json by_n = json::array();
+  for (int n = 1; n <= CardPrice::kMaxPipelines; n *= 2) {
+    const Resources t = card_total(c, n);
+    by_n.push_back({{"pipelines", n}, {"resources", res_json(t)},
+                    {"binding", binding_resource(t, p)}, {"binding_share", binding_share(t, p)}});
+  }
+  return {{"board", c.board},
+          {"pipelines", c.pipelines},
+          {"channels", c.channels},
+          {"cache_lines", c.cache_lines},
+          {"per_pipeline", res_json(c.per_pipeline)},
+          {"per_pair", res_json(c.per_pair)},
+          {"per_channel", res_json(c.per_channel)},
+          {"controller", res_json(c.controller)},
+          {"controller_source", c.controller_source},
+          {"issue", items(c.issue)},
+          {"channel", items(c.channel)},
+          {"total", res_json(c.total)},
+          {"binding", binding_resource(c.total, p)},
+          {"binding_share", binding_share(c.total, p)},
+          {"fits", c.fits},
+          {"largest_fit", c.largest_fit},
+          {"cache_store", res_json(c.cache_store)},
+          {"ported_largest_fit", c.ported_largest_fit},
+          {"by_pipelines", by_n}};
+}
+
+}  // namespace
+
 std::string report_json(const ResourceReport& r) {
   using nlohmann::json;
-  auto res = [](const Resources& x) {
-    return json{{"lut", x.luts}, {"ff", x.ffs}, {"dsp", x.dsps}, {"bram", x.brams}};
-  };
   json j;
   j["scene"] = r.scene;
   j["profile"] = r.profile_name;
   j["part"] = {{"name", r.part.name}, {"source", r.part.note}, {"lut", r.part.luts},
                {"ff", r.part.ffs}, {"dsp", r.part.dsps}, {"bram", r.part.brams},
-               {"dsp_kind", dsp_name(r.part.family)}, {"bram_kind", bram_name(r.part.family)}};
-  j["total"] = res(r.total);
+               {"uram", r.part.urams}, {"dsp_kind", dsp_name(r.part.family)},
+               {"bram_kind", bram_name(r.part.family)}};
+  j["total"] = res_json(r.total);
   j["latency"] = {{"ray_setup", r.latency_ray_setup}, {"sample", r.latency_sample}, {"ii", r.ii}};
   json units = json::array();
   for (const auto& u : r.units) {
@@ -740,9 +992,9 @@ std::string report_json(const ResourceReport& r) {
     for (const Op& op : u.unit.ops)
       ops.push_back({{"what", op.what}, {"kind", to_string(op.kind)}, {"count", op.count},
                      {"a", op.a}, {"b", op.b}, {"a_signed", op.a_signed},
-                     {"b_signed", op.b_signed}, {"resources", res(op_resources(op, r.part.family))}});
+                     {"b_signed", op.b_signed}, {"resources", res_json(op_resources(op, r.part))}});
     units.push_back({{"name", u.unit.name}, {"section", u.unit.section},
-                     {"latency", u.unit.latency}, {"ii", u.unit.ii}, {"resources", res(u.res)},
+                     {"latency", u.unit.latency}, {"ii", u.unit.ii}, {"resources", res_json(u.res)},
                      {"operators", ops}});
   }
   j["units"] = units;
@@ -753,6 +1005,7 @@ std::string report_json(const ResourceReport& r) {
   j["sizes"] = {{"value_store_bits", r.elaboration.value_store_bits},
                 {"gradient_store_bits", r.elaboration.gradient_store_bits},
                 {"class_entries", r.elaboration.class_entries}};
+  if (r.card) j["card"] = card_json(*r.card, r.part);
   return j.dump(2);
 }
 

@@ -49,7 +49,7 @@ TEST(ReportCli, BadInputIsOneLineError) {
   Command r = run("report " + scene("mip.toml") + " --part xc9999");
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.output, "voxcast: unknown part \"xc9999\" (known: xcv1000e, xc2v3000, xc7a200t, "
-                      "xc7k325t)\n");
+                      "xc7k325t, xcu250)\n");
   r = run("tune " + scene("mip.toml") + " --target-psnr 40 --vary weight_bits=9..2");
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.output.find("voxcast: tune: --vary \"weight_bits=9..2\""), 0u) << r.output;

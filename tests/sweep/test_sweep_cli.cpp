@@ -172,7 +172,8 @@ TEST(Sweep, InfeasiblePointsProgressAndPlots) {
             "precision.value_bits,render.oversampling,status,engine,psnr_db,max_err_lsb,"
             "mean_err_lsb,rms_err_lsb,pct_within_1lsb,ssim,hazards,hazard_worst_lsb,hazard_keys,"
             "rtl_fps,rtl_ns_per_sample,rtl_cycles,"
-            "part,luts,ffs,dsps,brams,part_pct,pareto_psnr_fps,pareto_psnr_resources,notes");
+            "part,luts,ffs,dsps,brams,urams,part_pct,part_max_pct,pareto_psnr_fps,"
+            "pareto_psnr_resources,pareto_fps_resources,notes");
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
     for (const char* f : {"psnr_vs_fps.png", "psnr_vs_fps.svg", "psnr_vs_render_oversampling.png",
                           "psnr_vs_render_oversampling.svg"})
@@ -259,7 +260,7 @@ TEST(Sweep, PartSelectsTheResourceColumnsPart) {
                           "xc9999 --out " + (d / "bad").string());
   EXPECT_EQ(bad.status, 1);
   EXPECT_EQ(bad.output, "voxcast: sweep: --part: unknown part \"xc9999\" (known: xcv1000e, "
-                        "xc2v3000, xc7a200t, xc7k325t)\n");
+                        "xc2v3000, xc7a200t, xc7k325t, xcu250)\n");
 }
 
 }  // namespace
