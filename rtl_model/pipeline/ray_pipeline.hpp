@@ -44,8 +44,8 @@
 // result moves at most one stage per clock (registers between the stages).
 #pragma once
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -62,6 +62,7 @@
 #include "rtl_model/layout/address_mapping.hpp"
 #include "rtl_model/layout/vizard2_layout.hpp"
 #include "rtl_model/pipeline/config.hpp"
+#include "rtl_model/pipeline/fast_in_order_port.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
 #include "rtl_model/pipeline/stats.hpp"
 #include "rtl_model/sdram/controller.hpp"
@@ -113,7 +114,9 @@ class RayPipeline {
                                         config.controller, config.fast_forward,
                                         config.scheduler_params));
       completions_[static_cast<std::size_t>(d)] = &ports_.back()->completions();
+      fast_[static_cast<std::size_t>(d)] = dynamic_cast<FastInOrderPort*>(ports_.back().get());
     }
+    all_fast_ = std::all_of(fast_.begin(), fast_.end(), [](const auto* p) { return p != nullptr; });
   }
 
   // Records the frame into `t` (rtl_model/trace/pipeline_trace.hpp); call
@@ -517,25 +520,34 @@ class RayPipeline {
   }
 
   void memory(Cycle now) {
-    for (std::size_t d = 0; d < layout::kDimms; ++d) {
-      auto& rq = req_[d];
-      MemoryPort& port = *ports_[d];
-      if (rq.valid() && rq.front().ready <= now && port.ready()) {
-        sdram::Request r = rq.pop().request;
-        r.arrival = now;
-        port.push(r);
-        ++events_;
-      }
-      if (now >= port.wake()) port.tick(now);  // (a virtual call saved while it waits)
-      auto& completions = *completions_[d];
-      if (completions.valid()) {
-        const std::uint64_t id = completions.pop().request.id;
-        port.popped(now);
-        Buffered& b = buf_[id];
-        b.word[d] = memory_.word(static_cast<int>(d), b.coord[d]);
-        b.arrived |= 1u << d;
-        ++events_;
-      }
+    // The event-driven in-order ports are called as their final class: their
+    // per-cycle members inline instead of going through MemoryPort's vtable.
+    if (all_fast_) {
+      for (std::size_t d = 0; d < layout::kDimms; ++d) memory_port(now, d, *fast_[d]);
+    } else {
+      for (std::size_t d = 0; d < layout::kDimms; ++d) memory_port(now, d, *ports_[d]);
+    }
+  }
+
+  // DIMM d's request FIFO, port and completions in one cycle.
+  template <class Port>
+  void memory_port(Cycle now, std::size_t d, Port& port) {
+    auto& rq = req_[d];
+    if (rq.valid() && rq.front().ready <= now && port.ready()) {
+      sdram::Request r = rq.pop().request;
+      r.arrival = now;
+      port.push(r);
+      ++events_;
+    }
+    if (now >= port.wake()) port.tick(now);  // (no call while it waits)
+    auto& completions = *completions_[d];
+    if (completions.valid()) {
+      const std::uint64_t id = completions.pop().request.id;
+      port.popped(now);
+      Buffered& b = buf_[id];
+      b.word[d] = memory_.word(static_cast<int>(d), b.coord[d]);
+      b.arrived |= 1u << d;
+      ++events_;
     }
   }
 
@@ -936,6 +948,8 @@ class RayPipeline {
   std::vector<sim::Fifo<TimedRequest>> req_;
   std::vector<std::unique_ptr<MemoryPort>> ports_;
   std::array<sim::Fifo<sdram::Completion>*, layout::kDimms> completions_{};  // ports_[d]'s
+  std::array<FastInOrderPort*, layout::kDimms> fast_{};  // ports_[d] if it is one
+  bool all_fast_ = false;
   std::vector<Buffered> buf_;
   std::size_t buf_head_ = 0, buf_count_ = 0;
   sim::Fifo<Interpolated> interp_;
