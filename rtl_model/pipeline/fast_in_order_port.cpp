@@ -17,7 +17,10 @@ FastInOrderPort::FastInOrderPort(const sdram::DimmConfig& dimm,
                                  const sdram::ControllerConfig& controller)
     : t_(sdram::Dimm(dimm).timing()),  // the Dimm validates the configuration
       geometry_(dimm.geometry),
-      not_before_(sdram::ConstraintTable(t_), dimm.geometry.banks, 0),
+      // The commands the port asks the table about (it issues no WR or RDA).
+      not_before_(sdram::ConstraintTable(t_), dimm.geometry.banks, 0, 1,
+                  sdram::NotBefore::asked(
+                      {Command::kAct, Command::kRd, Command::kPre, Command::kPrea, Command::kRef})),
       banks_(dimm.geometry.banks),
       postpone_limit_(dimm.refresh_postpone_limit),
       completions_("sdram.completions", controller.return_depth) {
@@ -27,6 +30,8 @@ FastInOrderPort::FastInOrderPort(const sdram::DimmConfig& dimm,
   burst_bytes_ = static_cast<std::uint64_t>(t_.BL) * geometry_.bytes_per_beat();
   pending_.resize(controller.queue_depth);
   flight_.resize(controller.return_depth + 1);
+  pending_depth_ = pending_.size();
+  flight_depth_ = flight_.size();
   ds_.banks.resize(geometry_.banks);
 }
 

@@ -42,13 +42,13 @@ class FastInOrderPort final : public MemoryPort {
   // Throws voxcast::Error for the configurations the Dimm and the Controller reject.
   FastInOrderPort(const sdram::DimmConfig& dimm, const sdram::ControllerConfig& controller);
 
-  bool ready() const override { return pending_count_ < pending_.size(); }
+  bool ready() const override { return pending_count_ < pending_depth_; }
   void push(const sdram::Request& r) override {
     if (!ready()) fail("request queue is full", r.arrival);
     if (r.address.bank >= geometry_.banks || r.address.row >= geometry_.rows ||
         r.address.column >= geometry_.columns)
       fail("request outside the DIMM", r.arrival);
-    sdram::PendingRequest& p = pending_[wrap(pending_head_ + pending_count_, pending_.size())];
+    sdram::PendingRequest& p = pending_[wrap(pending_head_ + pending_count_, pending_depth_)];
     p = sdram::PendingRequest{};
     p.request = r;
     // Only a new oldest request changes what the in-order scheduler does.
@@ -133,14 +133,14 @@ class FastInOrderPort final : public MemoryPort {
     issue_bank_command(cmd, a.bank, a.row, now);
     if (cmd != sdram::Command::kRd) return;
     ++cs_.reads;
-    sdram::Completion& c = flight_[wrap(flight_head_ + flight_count_, flight_.size())];
+    sdram::Completion& c = flight_[wrap(flight_head_ + flight_count_, flight_depth_)];
     c.request = p.request;
     c.outcome = *p.outcome;
     c.first_command = p.first_command;
     c.column_command = now;
     c.data = sdram::DataWindow{now + t_.CL, now + t_.CL + t_.BL - 1};
     ++flight_count_;
-    pending_head_ = wrap(pending_head_ + 1, pending_.size());
+    pending_head_ = wrap(pending_head_ + 1, pending_depth_);
     --pending_count_;
   }
 
@@ -198,7 +198,7 @@ class FastInOrderPort final : public MemoryPort {
       cs_.latency_sum += c.latency();
       cs_.latency_max = std::max(cs_.latency_max, c.latency());
       completions_.push(c);
-      flight_head_ = wrap(flight_head_ + 1, flight_.size());
+      flight_head_ = wrap(flight_head_ + 1, flight_depth_);
       --flight_count_;
     } while (flight_count_ > 0 && flight_[flight_head_].data.last <= now);
   }
@@ -247,6 +247,8 @@ class FastInOrderPort final : public MemoryPort {
   sim::Cycle head_at_ = 0;
   std::vector<sdram::Completion> flight_;  // ring, in data order
   std::size_t flight_head_ = 0, flight_count_ = 0;
+  // The rings' sizes, kept (a vector's size is a division by the element's).
+  std::size_t pending_depth_ = 0, flight_depth_ = 0;
   sim::Fifo<sdram::Completion> completions_;
   sdram::ControllerStats cs_;
   sdram::DimmStats ds_;

@@ -102,6 +102,7 @@ class RayPipeline {
     checked(config.latency.ray_setup_interval, "latency.ray_setup_interval");
     slots_.resize(static_cast<std::size_t>(config.ray_slots));
     buf_.resize(static_cast<std::size_t>(config.sample_buffer));
+    buf_size_ = buf_.size();
     for (int i = 0; i < config.ray_slots; ++i) free_.push(i);
     if (config.issue == IssuePolicy::kRowHit && config.issue_burst != 0)
       throw Error("rtl pipeline: issue_burst applies to the oldest-ray issue policy only");
@@ -514,7 +515,7 @@ class RayPipeline {
 
   void advance_buffer() {
     buf_[buf_head_].arrived = 0;
-    buf_head_ = buf_head_ + 1 == buf_.size() ? 0 : buf_head_ + 1;
+    buf_head_ = buf_head_ + 1 == buf_size_ ? 0 : buf_head_ + 1;
     --buf_count_;
     ++events_;
   }
@@ -566,7 +567,7 @@ class RayPipeline {
     const int i = issue_q_.at(j);
     Slot& s = slots_[static_cast<std::size_t>(i)];
     if (leap_ && try_leap(now, j, s)) return;
-    if (buf_count_ == buf_.size()) {
+    if (buf_count_ == buf_size_) {
       ++stats_.stalls.issue_buffer_full;
       return;
     }
@@ -580,7 +581,7 @@ class RayPipeline {
     // four DIMM words, one request to each DIMM.
     know_next_sample(s);
     std::size_t tail = buf_head_ + buf_count_;
-    if (tail >= buf_.size()) tail -= buf_.size();
+    if (tail >= buf_size_) tail -= buf_size_;
     Buffered& b = buf_[tail];
     b.slot = i;
     b.k = s.issued;
@@ -952,6 +953,7 @@ class RayPipeline {
   bool all_fast_ = false;
   std::vector<Buffered> buf_;
   std::size_t buf_head_ = 0, buf_count_ = 0;
+  std::size_t buf_size_ = 0;  // buf_.size(), kept (a division by the entry's size)
   sim::Fifo<Interpolated> interp_;
   sim::Fifo<Classified> class_;
   sim::Fifo<Shaded> shade_;

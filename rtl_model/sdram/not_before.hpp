@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 #include "rtl_model/sdram/timing.hpp"
@@ -39,11 +40,23 @@ namespace voxcast::rtl::sdram {
 
 class NotBefore {
  public:
+  // Bit index_of(c) set: at(c, ...) is asked (kAllCommandsAsked: every command).
+  using CommandSet = std::uint32_t;
+  static constexpr CommandSet kAllCommandsAsked = (1u << kCommandCount) - 1u;
+  static constexpr CommandSet asked(std::initializer_list<Command> commands) {
+    CommandSet s = 0;
+    for (const Command c : commands) s |= 1u << index_of(c);
+    return s;
+  }
+
   // Every bank and rank cycle starts at `initial` (kNever: no command yet).
   // `bank_groups` divides `banks` (group g: banks g * banks / bank_groups on).
+  // Only the commands in `asked` may be asked of at(): a controller that
+  // never issues WR or RDA (the in-order read port) keeps no cycles for them,
+  // and raise() does less per command.
   NotBefore(const ConstraintTable& table, std::uint32_t banks, Cycle initial,
-            std::uint32_t bank_groups = 1)
-      : banks_(banks), group_(banks), cycles_((banks + 2) * kCommandCount, initial) {
+            std::uint32_t bank_groups = 1, CommandSet asked = kAllCommandsAsked)
+      : banks_(banks), group_(banks), asked_(asked), cycles_((banks + 2) * kCommandCount, initial) {
     for (std::uint32_t b = 0; b < banks; ++b) group_[b] = b / (banks / bank_groups);
     if (const Constraint* w = table.four_activate_window()) faw_ = w->cycles;
     activates_.fill(kNever);
@@ -151,17 +164,24 @@ class NotBefore {
 
   // The folded rows (after_) as steps per issuing command and bank, in the
   // order raise() walked them. A kNone delay raised nothing (kNone + now
-  // stays below every cycle) and is left out.
+  // stays below every cycle) and is left out, and so is a later command
+  // nobody asks for. A per-bank row that gives every other bank the same
+  // delay x, and the issuing bank at least x, raises the every-bank cycle
+  // by x and the issuing bank's by its own (at() takes the larger of the
+  // two): ACT -> ACT (tRC, tRRD) is two steps instead of one per bank.
   void expand_steps() {
     first_step_.clear();
     steps_.clear();
     for (std::size_t p = 0; p < kCommandCount; ++p)
       for (std::uint32_t bank = 0; bank < banks_; ++bank) {
         first_step_.push_back(static_cast<std::uint32_t>(steps_.size()));
-        auto add = [this](std::size_t index, Cycle delay) {
-          if (delay != kNone) steps_.push_back(Step{static_cast<std::uint32_t>(index), delay});
+        std::size_t next = 0;  // the later command of the entry being expanded
+        auto add = [this, &next](std::size_t index, Cycle delay) {
+          if (delay == kNone || (asked_ >> next & 1u) == 0) return;
+          steps_.push_back(Step{static_cast<std::uint32_t>(index), delay});
         };
         for (const Entry& e : after_[p]) {
+          next = e.next;
           switch (e.kind) {
             case Kind::kRank:
               add(rank_index(e.next), e.own);
@@ -172,12 +192,22 @@ class NotBefore {
             case Kind::kOwnBank:
               add(bank_index(bank, e.next), e.own);
               break;
-            case Kind::kPerBank:
-              for (std::uint32_t b = 0; b < banks_; ++b)
-                add(bank_index(b, e.next), b == bank                   ? e.own
-                                           : group_[b] == group_[bank] ? e.group
-                                                                       : e.other);
+            case Kind::kPerBank: {
+              auto delay = [&](std::uint32_t b) {
+                return b == bank ? e.own : group_[b] == group_[bank] ? e.group : e.other;
+              };
+              const Cycle others = banks_ > 1 ? delay(bank == 0 ? 1 : 0) : kNone;
+              bool common = banks_ > 1;
+              for (std::uint32_t b = 0; b < banks_ && common; ++b)
+                common = b == bank || delay(b) == others;
+              if (common && others != kNone && e.own >= others) {
+                add(every_index(e.next), others);
+                if (e.own > others) add(bank_index(bank, e.next), e.own);
+                break;
+              }
+              for (std::uint32_t b = 0; b < banks_; ++b) add(bank_index(b, e.next), delay(b));
               break;
+            }
           }
         }
       }
@@ -186,6 +216,7 @@ class NotBefore {
 
   std::uint32_t banks_;
   std::vector<std::uint32_t> group_;  // [bank] its bank group
+  CommandSet asked_;
   Cycle faw_ = 0;                     // tFAW; 0: no four-activate window
   // The last four ACTs' cycles, a ring: activates_[oldest_] is the 4th-last.
   std::array<Cycle, ConstraintTable::kActivatesPerWindow> activates_{};
