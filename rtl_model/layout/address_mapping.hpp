@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
@@ -77,17 +78,33 @@ class AddressMapping {
   virtual ~AddressMapping() = default;
   virtual std::string_view name() const = 0;
   virtual std::uint64_t index(const WordCoord& c) const = 0;
-  sdram::Address map(const WordCoord& c) const { return split_row_bank_column(index(c), geometry_); }
+  // split_row_bank_column(index(c), geometry()), its shifts and masks
+  // computed once (the address generator maps four words per sample).
+  sdram::Address map(const WordCoord& c) const {
+    const std::uint64_t i = index(c);
+    sdram::Address a;
+    a.column = static_cast<std::uint32_t>(i & column_mask_);
+    a.bank = static_cast<std::uint32_t>((i >> bank_shift_) & bank_mask_);
+    a.row = static_cast<std::uint32_t>(i >> row_shift_);
+    return a;
+  }
   const sdram::Geometry& geometry() const { return geometry_; }
   const WordGrid& grid() const { return grid_; }
 
  protected:
   AddressMapping(const WordGrid& grid, const sdram::Geometry& geometry)
-      : grid_(grid), geometry_(geometry) {}
+      : grid_(grid),
+        geometry_(geometry),
+        column_mask_(geometry.columns - 1u),
+        bank_mask_(geometry.banks - 1u),
+        bank_shift_(std::countr_zero(geometry.columns)),
+        row_shift_(std::countr_zero(geometry.columns) + std::countr_zero(geometry.banks)) {}
 
  private:
   WordGrid grid_;
   sdram::Geometry geometry_;
+  std::uint64_t column_mask_, bank_mask_;  // split_row_bank_column's
+  int bank_shift_, row_shift_;
 };
 
 // The runtime choice of a mapping.

@@ -44,8 +44,8 @@
 // result moves at most one stage per clock (registers between the stages).
 #pragma once
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -62,6 +62,7 @@
 #include "rtl_model/layout/address_mapping.hpp"
 #include "rtl_model/layout/vizard2_layout.hpp"
 #include "rtl_model/pipeline/config.hpp"
+#include "rtl_model/pipeline/fast_in_order_port.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
 #include "rtl_model/pipeline/stats.hpp"
 #include "rtl_model/sdram/controller.hpp"
@@ -101,6 +102,7 @@ class RayPipeline {
     checked(config.latency.ray_setup_interval, "latency.ray_setup_interval");
     slots_.resize(static_cast<std::size_t>(config.ray_slots));
     buf_.resize(static_cast<std::size_t>(config.sample_buffer));
+    buf_size_ = buf_.size();
     for (int i = 0; i < config.ray_slots; ++i) free_.push(i);
     if (config.issue == IssuePolicy::kRowHit && config.issue_burst != 0)
       throw Error("rtl pipeline: issue_burst applies to the oldest-ray issue policy only");
@@ -113,7 +115,9 @@ class RayPipeline {
                                         config.controller, config.fast_forward,
                                         config.scheduler_params));
       completions_[static_cast<std::size_t>(d)] = &ports_.back()->completions();
+      fast_[static_cast<std::size_t>(d)] = dynamic_cast<FastInOrderPort*>(ports_.back().get());
     }
+    all_fast_ = std::all_of(fast_.begin(), fast_.end(), [](const auto* p) { return p != nullptr; });
   }
 
   // Records the frame into `t` (rtl_model/trace/pipeline_trace.hpp); call
@@ -511,31 +515,40 @@ class RayPipeline {
 
   void advance_buffer() {
     buf_[buf_head_].arrived = 0;
-    buf_head_ = buf_head_ + 1 == buf_.size() ? 0 : buf_head_ + 1;
+    buf_head_ = buf_head_ + 1 == buf_size_ ? 0 : buf_head_ + 1;
     --buf_count_;
     ++events_;
   }
 
   void memory(Cycle now) {
-    for (std::size_t d = 0; d < layout::kDimms; ++d) {
-      auto& rq = req_[d];
-      MemoryPort& port = *ports_[d];
-      if (rq.valid() && rq.front().ready <= now && port.ready()) {
-        sdram::Request r = rq.pop().request;
-        r.arrival = now;
-        port.push(r);
-        ++events_;
-      }
-      if (now >= port.wake()) port.tick(now);  // (a virtual call saved while it waits)
-      auto& completions = *completions_[d];
-      if (completions.valid()) {
-        const std::uint64_t id = completions.pop().request.id;
-        port.popped(now);
-        Buffered& b = buf_[id];
-        b.word[d] = memory_.word(static_cast<int>(d), b.coord[d]);
-        b.arrived |= 1u << d;
-        ++events_;
-      }
+    // The event-driven in-order ports are called as their final class: their
+    // per-cycle members inline instead of going through MemoryPort's vtable.
+    if (all_fast_) {
+      for (std::size_t d = 0; d < layout::kDimms; ++d) memory_port(now, d, *fast_[d]);
+    } else {
+      for (std::size_t d = 0; d < layout::kDimms; ++d) memory_port(now, d, *ports_[d]);
+    }
+  }
+
+  // DIMM d's request FIFO, port and completions in one cycle.
+  template <class Port>
+  void memory_port(Cycle now, std::size_t d, Port& port) {
+    auto& rq = req_[d];
+    if (rq.valid() && rq.front().ready <= now && port.ready()) {
+      sdram::Request r = rq.pop().request;
+      r.arrival = now;
+      port.push(r);
+      ++events_;
+    }
+    if (now >= port.wake()) port.tick(now);  // (no call while it waits)
+    auto& completions = *completions_[d];
+    if (completions.valid()) {
+      const std::uint64_t id = completions.pop().request.id;
+      port.popped(now);
+      Buffered& b = buf_[id];
+      b.word[d] = memory_.word(static_cast<int>(d), b.coord[d]);
+      b.arrived |= 1u << d;
+      ++events_;
     }
   }
 
@@ -554,7 +567,7 @@ class RayPipeline {
     const int i = issue_q_.at(j);
     Slot& s = slots_[static_cast<std::size_t>(i)];
     if (leap_ && try_leap(now, j, s)) return;
-    if (buf_count_ == buf_.size()) {
+    if (buf_count_ == buf_size_) {
       ++stats_.stalls.issue_buffer_full;
       return;
     }
@@ -568,7 +581,7 @@ class RayPipeline {
     // four DIMM words, one request to each DIMM.
     know_next_sample(s);
     std::size_t tail = buf_head_ + buf_count_;
-    if (tail >= buf_.size()) tail -= buf_.size();
+    if (tail >= buf_size_) tail -= buf_size_;
     Buffered& b = buf_[tail];
     b.slot = i;
     b.k = s.issued;
@@ -936,8 +949,11 @@ class RayPipeline {
   std::vector<sim::Fifo<TimedRequest>> req_;
   std::vector<std::unique_ptr<MemoryPort>> ports_;
   std::array<sim::Fifo<sdram::Completion>*, layout::kDimms> completions_{};  // ports_[d]'s
+  std::array<FastInOrderPort*, layout::kDimms> fast_{};  // ports_[d] if it is one
+  bool all_fast_ = false;
   std::vector<Buffered> buf_;
   std::size_t buf_head_ = 0, buf_count_ = 0;
+  std::size_t buf_size_ = 0;  // buf_.size(), kept (a division by the entry's size)
   sim::Fifo<Interpolated> interp_;
   sim::Fifo<Classified> class_;
   sim::Fifo<Shaded> shade_;

@@ -64,15 +64,15 @@ requires std::default_initializable<T> && std::movable<T>
 class Fifo {
  public:
   // Throws voxcast::Error for depth 0.
-  Fifo(std::string name, std::size_t depth) : name_(std::move(name)), slots_(depth) {
+  Fifo(std::string name, std::size_t depth) : name_(std::move(name)), slots_(depth), depth_(depth) {
     if (depth == 0) fail("depth 0 (a FIFO holds at least one entry)");
   }
 
   const std::string& name() const { return name_; }
-  std::size_t depth() const { return slots_.size(); }
+  std::size_t depth() const { return depth_; }
   std::size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
-  bool full() const { return count_ == slots_.size(); }
+  bool full() const { return count_ == depth_; }
   bool ready() const { return !full(); }   // the producer may push
   bool valid() const { return !empty(); }  // the consumer may pop
 
@@ -155,7 +155,7 @@ class Fifo {
  private:
   // i mod depth for i < 2 * depth: a compare instead of a division per push
   // and pop (the pipeline moves several FIFO entries per simulated cycle).
-  std::size_t wrap(std::size_t i) const { return i >= slots_.size() ? i - slots_.size() : i; }
+  std::size_t wrap(std::size_t i) const { return i >= depth_ ? i - depth_ : i; }
 
   // The clocks from the last account up to `end` (exclusive), each ending at
   // the present occupancy.
@@ -177,6 +177,9 @@ class Fifo {
 
   std::string name_;
   std::vector<T> slots_;
+  // slots_.size(), kept: the vector's size is a division by sizeof(T) (a
+  // multiplication for most T), asked at every push, pop and ready().
+  std::size_t depth_;
   std::size_t head_ = 0;
   std::size_t count_ = 0;
   FifoStats stats_;
