@@ -95,9 +95,9 @@ void sdram_timing_comment(std::ostringstream& os, const Board& b) {
      << "# tRAS(max) floor (rtl_model/sdram/timing.hpp, ns_to_cycles).\n"
      << "#   source: " << m.timing.source << "\n";
   if (m.type != "sdr") {
-    os << "#   memory.type = " << m.type << ": the card's cycle model runs SDR SDRAM only; one\n"
-       << "#   channel runs in the DRAM model (voxcast dram-trace), its minimums by JEDEC's DDR4\n"
-       << "#   rounding (Rounding::kJedecGuardBand), not the ceil above.\n\n";
+    os << "#   memory.type = " << m.type << ": the card's cycle model runs it as the DDR4 card\n"
+       << "#   (rtl_model/pipeline/burst_card.hpp; one channel alone: voxcast dram-trace), its\n"
+       << "#   minimums by JEDEC's DDR4 rounding (Rounding::kJedecGuardBand), not the ceil above.\n\n";
     return;
   }
   try {

@@ -19,9 +19,9 @@ create_clock -name pcie_refclk -period 10.000 [get_ports {pcie_refclk_p}]
 # DDR4-2400 CL17 [Micron MT40A2G4-083 (8Gb DDR4 x4)] at the memory clock (0.833 ns); cycles = ceil(ns / period), tREFI and
 # tRAS(max) floor (rtl_model/sdram/timing.hpp, ns_to_cycles).
 #   source: JEDEC JESD79-4B, DDR4-2400 17-17-17 (tAA = tRCD = tRP = 14.16 ns, tRAS 32 ns, tRC 46.16 ns, CWL 12), tRAS(max) = 9 x tREFI; x4 (1/2 KB page): tRRD_S max(4nCK,3.3ns), tRRD_L max(4nCK,4.9ns), tFAW max(16nCK,13ns); tCCD_S 4nCK, tCCD_L max(5nCK,5ns), tWTR_S max(2nCK,2.5ns), tWTR_L max(4nCK,7.5ns), tRTP max(4nCK,7.5ns), tWR 15 ns, tRFC1 = 350 ns (8Gb), tREFI = 7.8 us (8192 x 7.8 us = 63.8976 ms), tMRD = 8 nCK; checked against DRAMsim3 configs/DDR4_8Gb_x4_2400.ini and Ramulator 2 src/dram/impl/DDR4.cpp
-#   memory.type = ddr4: the card's cycle model runs SDR SDRAM only; one
-#   channel runs in the DRAM model (voxcast dram-trace), its minimums by JEDEC's DDR4
-#   rounding (Rounding::kJedecGuardBand), not the ceil above.
+#   memory.type = ddr4: the card's cycle model runs it as the DDR4 card
+#   (rtl_model/pipeline/burst_card.hpp; one channel alone: voxcast dram-trace), its
+#   minimums by JEDEC's DDR4 rounding (Rounding::kJedecGuardBand), not the ceil above.
 
 # ---- I/O delays -----------------------------------------------------------------
 # Memory pins: interface = vendor_phy: no input/output delays here.
