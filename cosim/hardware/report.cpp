@@ -488,21 +488,26 @@ const std::vector<Part>& parts() {
   return k;
 }
 
+namespace {
+// "xcv1000e, xc2v3000, ...": the parts' names for an error message.
+std::string known_part_names() {
+  std::string list;
+  for (const Part& p : parts()) list += (list.empty() ? "" : ", ") + p.name;
+  return list;
+}
+}  // namespace
+
 const Part& find_part(const std::string& name) {
   for (const Part& p : parts())
     if (p.name == name) return p;
-  std::string list;
-  for (const Part& p : parts()) list += (list.empty() ? "" : ", ") + p.name;
-  throw Error("unknown part \"" + name + "\" (known: " + list + ")");
+  throw Error("unknown part \"" + name + "\" (known: " + known_part_names() + ")");
 }
 
 const Part& find_device_part(const std::string& device) {
   for (const Part& p : parts())
     if (device == p.name || device.rfind(p.name + "-", 0) == 0) return p;
-  std::string list;
-  for (const Part& p : parts()) list += (list.empty() ? "" : ", ") + p.name;
   throw Error("the board's FPGA \"" + device + "\" is not a part voxcast report knows (known: " +
-              list + ")");
+              known_part_names() + ")");
 }
 
 Resources& Resources::operator+=(const Resources& r) {
@@ -766,13 +771,18 @@ const char* dsp_name(Family f) {
                                 : "DSP48E2";
 }
 
-std::string pct(double used, int cap) {
-  if (cap <= 0) return used > 0 ? "n/a" : "-";
+// A share of 1 as "12.3 %".
+std::string percent(double share) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(1);
-  s << 100.0 * used / cap << " %";
+  s << 100.0 * share << " %";
   return s.str();
+}
+
+std::string pct(double used, int cap) {
+  if (cap <= 0) return used > 0 ? "n/a" : "-";
+  return percent(used / cap);
 }
 
 }  // namespace
@@ -800,14 +810,6 @@ std::string share_cells(const Resources& x, const Part& p) {
                   " | " + pct(x.brams, p.brams);
   if (p.urams > 0) s += " | " + pct(x.urams, p.urams);
   return s;
-}
-
-std::string percent(double share) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(1);
-  s << 100.0 * share << " %";
-  return s.str();
 }
 
 // "534 FF, 36 URAM": the resources a figure uses, in words.
