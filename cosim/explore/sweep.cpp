@@ -93,8 +93,8 @@ std::vector<Cell> measure_rtl_cells(const PointContext& p) {
 std::vector<Cell> measure_resource_cells(const PointContext& p) {
   const Part& part = find_part(p.part);
   const ref::Elaboration e = ref::elaborate(p.scene, p.volume.volume, p.volume.gradients);
-  Resources total = estimate_resources(e, part).total;
-  if (const std::optional<CardPrice> card = price_scene_card(p.scene, e, part)) total = card->total;
+  const std::optional<CardPrice> card = price_scene_card(p.scene, e, part);
+  const Resources total = card ? card->total : estimate_resources(e, part).total;
   return {Cell::txt(part.name),
           Cell::num(total.luts),
           Cell::num(total.ffs),
