@@ -384,7 +384,7 @@ class RayPipeline {
       Slot& s = slots_[static_cast<std::size_t>(e.slot)];
       const int slot = e.slot;
       if (s.finished) {  // after early ray termination
-        shade_.pop();
+        shade_.discard();
         ++events_;
         drop(slot);
       } else if (!out_.ready()) {
@@ -403,7 +403,7 @@ class RayPipeline {
             done = true;
           }
         }
-        shade_.pop();
+        shade_.discard();
         ++events_;
         --s.outstanding;
         if (done) {
@@ -436,30 +436,31 @@ class RayPipeline {
 
   void shade(Cycle now) {
     if (!class_.valid() || class_.front().ready > now || !shade_.ready()) return;
-    const Classified in = class_.pop();
-    Shaded out;
+    // Built in place (Fifo::emplace): every member is assigned below.
+    const Classified& in = class_.front();
+    Shaded& out = shade_.emplace();
     out.ready = now + config_.latency.shading;
     out.slot = in.slot;
     out.k = in.k;
     out.pos = in.pos;
     out.value = in.s.value;
-    out.alpha = 0;
-    if (!mip_) {
-      out.alpha = in.e.alpha;
-      if (in.e.alpha != 0) {
-        hls::Reflect<P> r{0, 0};
-        if (shaded_) r = hls::reflect<P>(f_.reflectance, f_.reflectance_regs, in.s.g);
-        out.c = hls::shade<P>(in.e, r, shaded_);
-      }
+    out.alpha = mip_ ? typename C::alpha_t(0) : in.e.alpha;
+    if (out.alpha != 0) {
+      hls::Reflect<P> r{0, 0};
+      if (shaded_) r = hls::reflect<P>(f_.reflectance, f_.reflectance_regs, in.s.g);
+      out.c = hls::shade<P>(in.e, r, shaded_);
+    } else {
+      out.c = hls::ShadedColor<P>{};  // (not composited)
     }
-    shade_.push(out);
+    class_.discard();
     ++events_;
   }
 
   void classify(Cycle now) {
     if (!interp_.valid() || interp_.front().ready > now || !class_.ready()) return;
-    const Interpolated in = interp_.pop();
-    Classified out;
+    // Built in place (Fifo::emplace): every member is assigned below.
+    const Interpolated& in = interp_.front();
+    Classified& out = class_.emplace();
     out.ready = now + config_.latency.classification;
     out.slot = in.slot;
     out.k = in.k;
@@ -478,8 +479,10 @@ class RayPipeline {
       out.e.alpha = hls::segment_opacity<P>(f_.segments, hls::class_address<P>(in.s.value),
                                             out.e.alpha,
                                             hls::sample_weight<P>(s.weights, in.pos, s.n));
+    } else {
+      out.e = hls::ClassEntry<P>{};  // (MIP composites the value)
     }
-    class_.push(out);
+    interp_.discard();
     ++events_;
   }
 
@@ -503,13 +506,12 @@ class RayPipeline {
     const layout::Dimm4Banks<P> view{b.word.data(), b.access.parity};
     hls::VoxelWordFx<P> corner[8];
     hls::gather<P>(view, b.access, corner);
-    Interpolated out;
+    Interpolated& out = interp_.emplace();  // every member assigned
     out.ready = now + config_.latency.interpolation;
     out.slot = b.slot;
     out.k = b.k;
     out.pos = b.pos;
     out.s = hls::interpolation_processor<P>(corner, b.access.fq);
-    interp_.push(out);
     advance_buffer();
   }
 
@@ -535,7 +537,8 @@ class RayPipeline {
   void memory_port(Cycle now, std::size_t d, Port& port) {
     auto& rq = req_[d];
     if (rq.valid() && rq.front().ready <= now && port.ready()) {
-      sdram::Request r = rq.pop().request;
+      sdram::Request r = rq.front().request;
+      rq.discard();
       r.arrival = now;
       port.push(r);
       ++events_;
@@ -543,7 +546,8 @@ class RayPipeline {
     if (now >= port.wake()) port.tick(now);  // (no call while it waits)
     auto& completions = *completions_[d];
     if (completions.valid()) {
-      const std::uint64_t id = completions.pop().request.id;
+      const std::uint64_t id = completions.front().request.id;
+      completions.discard();
       port.popped(now);
       Buffered& b = buf_[id];
       b.word[d] = memory_.word(static_cast<int>(d), b.coord[d]);
@@ -592,18 +596,16 @@ class RayPipeline {
     for (std::size_t d = 0; d < layout::kDimms; ++d)
       memory_.prefetch(static_cast<int>(d), b.coord[d]);  // host cache only: no model effect
     ++buf_count_;
+    const Cycle ready = now + config_.latency.address + config_.latency.leap_lookup;
     for (std::size_t d = 0; d < layout::kDimms; ++d) {
-      TimedRequest t;
-      t.ready = now + config_.latency.address + config_.latency.leap_lookup;
-      t.request.id = tail;
-      t.request.kind = sdram::RequestKind::kRead;
-      t.request.address = s.next_addr[d];
+      TimedRequest& t = req_[d].emplace();  // every member assigned
+      t.ready = ready;
+      t.request = sdram::Request{tail, sdram::RequestKind::kRead, s.next_addr[d], 0};
       std::uint32_t& last = last_row_[d][s.next_addr[d].bank];
       if (last != s.next_addr[d].row) {
         last = s.next_addr[d].row;
         ++row_epoch_;  // every ray's cached row_hits() is stale
       }
-      req_[d].push(t);
     }
     ++events_;
     ++s.outstanding;

@@ -78,9 +78,9 @@ class Fifo {
 
   void push(T value) {
     if (full()) fail("push while full");
-    if (clock_) account(*clock_);
     slots_[wrap(head_ + count_)] = std::move(value);
     ++count_;
+    if (clock_) pushed_at(*clock_);
     ++stats_.pushes;
     stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
   }
@@ -92,12 +92,38 @@ class Fifo {
 
   T pop() {
     if (empty()) fail("pop while empty");
-    if (clock_) account(*clock_);
+    if (clock_) popping_at(*clock_);
     T value = std::move(slots_[head_]);
     head_ = wrap(head_ + 1);
     --count_;
+    if (clock_ && count_ == 0) empty_since_ = *clock_;
     ++stats_.pops;
     return value;
+  }
+
+  // pop() for a consumer that has read front() and needs no copy of it (an
+  // entry of a pipeline FIFO is 50-100 bytes; the model moves several per
+  // simulated clock).
+  void discard() {
+    if (empty()) fail("pop while empty");
+    if (clock_) popping_at(*clock_);
+    head_ = wrap(head_ + 1);
+    --count_;
+    if (clock_ && count_ == 0) empty_since_ = *clock_;
+    ++stats_.pops;
+  }
+
+  // push() of an entry built in place: returns the new last entry, which
+  // holds whatever an earlier entry left there; the producer assigns every
+  // member before the consumer can see it (in the same clock).
+  T& emplace() {
+    if (full()) fail("push while full");
+    T& slot = slots_[wrap(head_ + count_)];
+    ++count_;
+    if (clock_) pushed_at(*clock_);
+    ++stats_.pushes;
+    stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
+    return slot;
   }
 
   // The i-th entry from the front (0 = front()); for a consumer that picks
@@ -111,11 +137,12 @@ class Fifo {
   // place, so the order of the rest is kept (take(0) == pop()).
   T take(std::size_t i) {
     if (i >= count_) fail("take() past the last entry");
-    if (clock_) account(*clock_);
+    if (clock_) popping_at(*clock_);
     T value = std::move(slots_[wrap(head_ + i)]);
     for (std::size_t k = i; k + 1 < count_; ++k)
       slots_[wrap(head_ + k)] = std::move(slots_[wrap(head_ + k + 1)]);
     --count_;
+    if (clock_ && count_ == 0) empty_since_ = *clock_;
     ++stats_.pops;
     return value;
   }
@@ -134,11 +161,21 @@ class Fifo {
   // Statistics so far are kept; the first change accounts from cycle `from`.
   void sample_on_change(const std::int64_t* clock, std::int64_t from = 0) {
     clock_ = clock;
-    accounted_ = from;
+    restart_at(from);
   }
   // Accounts the clocks up to `end` (exclusive) at the present occupancy, as
-  // sample() at the end of each of them would (sample_on_change only).
-  void sample_until(std::int64_t end) { account(end); }
+  // sample() at the end of each of them would (sample_on_change only), and
+  // goes on accounting from `end`.
+  void sample_until(std::int64_t end) {
+    if (end <= since_) return;
+    const auto n = static_cast<std::uint64_t>(end - since_);
+    stats_.sampled_cycles += n;
+    stats_.occupancy_sum +=
+        static_cast<std::uint64_t>(static_cast<std::int64_t>(count_) * end + area_);
+    stats_.full_cycles += full_ + (full() ? static_cast<std::uint64_t>(end - full_since_) : 0);
+    stats_.empty_cycles += empty_ + (empty() ? static_cast<std::uint64_t>(end - empty_since_) : 0);
+    restart_at(end);
+  }
 
   bool drained() const { return empty(); }
   void expect_drained() const {
@@ -157,16 +194,28 @@ class Fifo {
   // and pop (the pipeline moves several FIFO entries per simulated cycle).
   std::size_t wrap(std::size_t i) const { return i >= depth_ ? i - depth_ : i; }
 
-  // The clocks from the last account up to `end` (exclusive), each ending at
-  // the present occupancy.
-  void account(std::int64_t end) {
-    if (end <= accounted_) return;
-    const auto n = static_cast<std::uint64_t>(end - accounted_);
-    accounted_ = end;
-    stats_.sampled_cycles += n;
-    stats_.occupancy_sum += n * count_;
-    if (full()) stats_.full_cycles += n;
-    if (empty()) stats_.empty_cycles += n;
+  // Sampling on change keeps running terms that a push or pop updates with
+  // an addition or two, no multiplication: the occupancy summed over the
+  // clocks since_ <= c < T is count_ * T + area_ (an entry pushed at t and
+  // popped at t' adds t' - t), and the full (empty) clocks are full_
+  // (empty_) plus, while the FIFO is full (empty), T - full_since_
+  // (T - empty_since_). A change at clock t holds from the end of clock t on.
+  void restart_at(std::int64_t t) {
+    since_ = t;
+    area_ = -static_cast<std::int64_t>(count_) * t;
+    full_ = empty_ = 0;
+    full_since_ = empty_since_ = t;
+  }
+  // After a push at clock t (count_ already counts it).
+  void pushed_at(std::int64_t t) {
+    area_ -= t;
+    if (count_ == 1) empty_ += static_cast<std::uint64_t>(t - empty_since_);
+    if (count_ == depth_) full_since_ = t;
+  }
+  // Before a pop at clock t (the caller sets empty_since_ if it empties).
+  void popping_at(std::int64_t t) {
+    area_ += t;
+    if (count_ == depth_) full_ += static_cast<std::uint64_t>(t - full_since_);
   }
 
   [[noreturn]] void fail(std::string_view what) const {
@@ -184,7 +233,12 @@ class Fifo {
   std::size_t count_ = 0;
   FifoStats stats_;
   const std::int64_t* clock_ = nullptr;  // sample_on_change: the owner's cycle
-  std::int64_t accounted_ = 0;           // clocks before it are in stats_
+  // sample_on_change's running terms (restart_at): clocks before since_ are
+  // in stats_.
+  std::int64_t since_ = 0;
+  std::int64_t area_ = 0;
+  std::uint64_t full_ = 0, empty_ = 0;
+  std::int64_t full_since_ = 0, empty_since_ = 0;
 };
 
 template <typename T>
