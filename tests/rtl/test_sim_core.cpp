@@ -174,31 +174,46 @@ TEST(Fifo, OccupancyStatisticsAreMemberCounters) {
 // every clock: a fixed-seed stream of pushes, pops and takes, with idle
 // stretches, into two FIFOs, one sampled at the end of every cycle and one
 // told the cycle.
+// The lazy FIFO starts with entries, at a clock other than 0, is read out
+// half-way (sample_until goes on accounting from there), and builds and
+// drops entries in place (emplace, discard) as well as by value.
 TEST(Fifo, SamplingOnChangeEqualsSamplingEveryCycle) {
   Fifo<int> every("every", 5), lazy("lazy", 5);
-  std::int64_t now = 0;
-  lazy.sample_on_change(&now);
+  for (int v : {7, 8}) {
+    every.push(v);
+    lazy.push(v);
+  }
+  const std::int64_t start = 100;
+  std::int64_t now = start;
+  lazy.sample_on_change(&now, start);
   std::uint32_t seed = 12345;
   auto rnd = [&seed] {
     seed = seed * 1664525u + 1013904223u;
     return seed >> 16;
   };
-  for (now = 0; now < 20000; ++now) {
+  for (now = start; now < 20000; ++now) {
     const unsigned moves = (now / 500) % 3 == 2 ? 0 : rnd() % 3;  // idle stretches too
     for (unsigned m = 0; m < moves; ++m) {
-      const unsigned op = rnd() % 3;
+      const unsigned op = rnd() % 5;
+      const int v = static_cast<int>(rnd() % 1000);
       if (op == 0 && every.ready()) {
-        every.push(static_cast<int>(m));
-        lazy.push(static_cast<int>(m));
+        every.push(v);
+        lazy.push(v);
       } else if (op == 1 && every.valid()) {
-        every.pop();
-        lazy.pop();
+        ASSERT_EQ(lazy.pop(), every.pop());
       } else if (op == 2 && every.size() > 1) {
-        every.take(1);
-        lazy.take(1);
+        ASSERT_EQ(lazy.take(1), every.take(1));
+      } else if (op == 3 && every.ready()) {
+        every.push(v);
+        lazy.emplace() = v;
+      } else if (op == 4 && every.valid()) {
+        ASSERT_EQ(lazy.front(), every.front());
+        every.pop();
+        lazy.discard();
       }
     }
     every.sample();
+    if (now == 9999) lazy.sample_until(now + 1);  // a read-out half-way
   }
   lazy.sample_until(now);
   const FifoStats& a = every.stats();
@@ -221,12 +236,14 @@ TEST(Fifo, OverflowAndUnderflowAreErrorsNamingTheFifo) {
   f.push(1);
   f.push(2);
   expect_error([&] { f.push(3); }, {"FIFO 'sdram.return'", "push while full"});
-  EXPECT_EQ(f.size(), 2u);  // the failed push changed nothing
+  expect_error([&] { f.emplace() = 3; }, {"FIFO 'sdram.return'", "push while full"});
+  EXPECT_EQ(f.size(), 2u);  // the failed pushes changed nothing
   EXPECT_FALSE(f.drained());
   expect_error([&] { f.expect_drained(); }, {"sdram.return", "2 entries at the end"});
   f.pop();
-  f.pop();
+  f.discard();
   EXPECT_NO_THROW(f.expect_drained());
+  expect_error([&] { f.discard(); }, {"FIFO 'sdram.return'", "pop while empty"});
   expect_error([] { Fifo<int>("zero", 0); }, {"zero", "depth 0"});
 }
 
