@@ -81,7 +81,8 @@ class AddressMapping {
   // split_row_bank_column(index(c), geometry()), its shifts and masks
   // computed once (the address generator maps four words per sample).
   sdram::Address map(const WordCoord& c) const {
-    const std::uint64_t i = index(c);
+    // The linear mapping (the baseline's) without the virtual call.
+    const std::uint64_t i = linear_index_ ? grid_.linear(c) : index(c);
     sdram::Address a;
     a.column = static_cast<std::uint32_t>(i & column_mask_);
     a.bank = static_cast<std::uint32_t>((i >> bank_shift_) & bank_mask_);
@@ -99,6 +100,8 @@ class AddressMapping {
         bank_mask_(geometry.banks - 1u),
         bank_shift_(std::countr_zero(geometry.columns)),
         row_shift_(std::countr_zero(geometry.columns) + std::countr_zero(geometry.banks)) {}
+  // Set by a mapping whose index() is grid().linear(c).
+  bool linear_index_ = false;
 
  private:
   WordGrid grid_;

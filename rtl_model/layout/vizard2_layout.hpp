@@ -147,9 +147,18 @@ class Vizard2Memory {
     }
   }
 
+  // voxel() of both halves, the word address of their (y, z) row computed once.
   DimmWord<P> word(int d, const WordCoord& c) const {
     const auto v = Vizard2Layout::voxel_of(d, c, 0);
-    return {voxel(v[0], v[1], v[2]), voxel(v[0] + 1, v[1], v[2])};
+    const std::uint64_t row =
+        static_cast<std::uint64_t>(v[1] >> 1) * hx_ + static_cast<std::uint64_t>(v[2] >> 1) * hxy_;
+    const int yz = (v[1] & 1) << 1 | (v[2] & 1) << 2;
+    auto half = [&](int x) {
+      if (x >= memory_.dims[0]) return zero();
+      const std::uint64_t w = static_cast<std::uint64_t>(x >> 1) + row;
+      return banks_.read((x & 1) | yz, typename hls::InterpolationParams<P>::word_addr_t(w));
+    };
+    return {half(v[0]), half(v[0] + 1)};
   }
 
   // The 64-bit word on the DIMM's bus: needs a packed voxel word of at most 32 bits.
