@@ -8,7 +8,9 @@
 # Frames: scenes/default.toml, endoscopy.toml, colin27.toml (when mricron-data
 # is installed) in the VIZARD II in-order configuration (the scenes' own [rtl])
 # and in the row-hit goal configuration (rtl::bench::row_hit_goal_config()),
-# and heidelberg.toml (VIRIM's cycle model, its own engine). Per frame:
+# default and endoscopy on the Alveo U250 board (the DDR4 card with brick
+# caches, rtl_model/pipeline/burst_card.hpp: 8 pipelines, FR-FCFS), and
+# heidelberg.toml (VIRIM's cycle model, its own engine). Per frame:
 #   NAME.stats  voxcast_rtl_speed: every RtlStats counter (cycles, stalls, row
 #               outcomes, activates per bank, FIFO occupancies) and the image hash
 #   NAME.json   the report of `voxcast render --engine rtl`, host timing removed
@@ -21,11 +23,15 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 goal=(--set rtl.issue=row-hit --set rtl.issue_bypass_limit=4096 --set rtl.ray_slots=32
       --set rtl.traversal=tiles --set rtl.tile=4 --set rtl.layout=bricked-swizzled
       --set rtl.scheduler=lookahead --set rtl.auto_precharge=true)
+u250=(--set rtl.board=alveo_u250 --set rtl.pipelines=8 --set rtl.scheduler=fr-fcfs
+      --set rtl.queue_depth=32 --set rtl.reorder_window=32)
 
 frames() {
   local scenes=(default endoscopy)
   [ -e /usr/share/mricron/templates/ch2.nii.gz ] && scenes+=(colin27)
   for s in "${scenes[@]}"; do echo "$s in-order"; echo "$s row-hit"; done
+  echo "default u250"
+  echo "endoscopy u250"
   echo "heidelberg virim"
 }
 
@@ -35,6 +41,7 @@ record() {
   while read -r scene config; do
     local name="$scene-$config" sets=()
     [ "$config" = row-hit ] && sets=("${goal[@]}")
+    [ "$config" = u250 ] && sets=("${u250[@]}")
     echo "rtl_identity: $name" >&2
     if [ "$config" != virim ]; then
       "$build/tools/rtl_speed/voxcast_rtl_speed" "$here/scenes/$scene.toml" "${sets[@]}" \
