@@ -101,6 +101,7 @@ class RayPipeline {
     checked(config.sample_buffer, "sample_buffer");
     checked(config.latency.ray_setup_interval, "latency.ray_setup_interval");
     slots_.resize(static_cast<std::size_t>(config.ray_slots));
+    view_.resize(slots_.size());
     buf_.resize(static_cast<std::size_t>(config.sample_buffer));
     buf_size_ = buf_.size();
     for (int i = 0; i < config.ray_slots; ++i) free_.push(i);
@@ -224,8 +225,8 @@ class RayPipeline {
  private:
   // ---- State --------------------------------------------------------------------------------
   struct Slot {
+    // (When it may issue, and its row hits: IssueView.)
     int x = 0, y = 0;
-    Cycle ready_at = 0;
     std::uint64_t n = 0, issued = 0, composited = 0;
     std::uint64_t next = 0;  // the next sample's index: issued + skipped by space leaping
     bool issue_done = false; // every sample issued or skipped
@@ -243,15 +244,22 @@ class RayPipeline {
     hls::Sample<P> front;
     // The next sample's bank access and DIMM addresses, computed once and
     // held until it is issued (row-hit issue compares them every clock).
+    // forget_next() clears it.
     bool next_known = false;
     hls::BankAccess<P> next_access;
     std::array<layout::WordCoord, layout::kDimms> next_coord{};
     std::array<sdram::Address, layout::kDimms> next_addr{};
-    // Row-hit issue: row_hits() of the next sample, valid while the
-    // last-row registers are those of hits_epoch (the simulation's cache:
-    // the registers change at a row change, not at every issue).
-    int hits = 0;
+  };
+  // What the issue stage asks of every ray in its queue in every clock, per
+  // ray slot in a compact array of its own (the simulation's layout: the
+  // row-hit pick walks up to 32 rays a clock, and a Slot is ~400 bytes).
+  struct IssueView {
+    Cycle ready_at = 0;  // the ray may issue from this clock on
+    // Row-hit issue: row_hits() of the next sample, valid while the last-row
+    // registers are those of hits_epoch (they change at a row change, not at
+    // every issue) and the next sample is the one they were counted for.
     std::uint64_t hits_epoch = kNoEpoch;
+    int hits = 0;
   };
   // Samples carry k, their place among the ray's issued samples, and pos,
   // their place among all its samples (issued or leapt over), 0 .. n-1.
@@ -334,9 +342,9 @@ class RayPipeline {
     if (shade_.valid()) later(shade_.front().ready);
     if (config_.issue == IssuePolicy::kRowHit) {
       for (std::size_t k = 0; k < issue_q_.size(); ++k)
-        later(slots_[static_cast<std::size_t>(issue_q_.at(k))].ready_at);
+        later(view_[static_cast<std::size_t>(issue_q_.at(k))].ready_at);
     } else if (issue_q_.valid()) {
-      later(slots_[static_cast<std::size_t>(issue_q_.front())].ready_at);
+      later(view_[static_cast<std::size_t>(issue_q_.front())].ready_at);
     }
     if (next_pixel_ < order_.size()) later(setup_next_);
     return t;
@@ -613,7 +621,7 @@ class RayPipeline {
     ++stats_.samples_issued;
     ++s.next;
     hls::step_position<P>(s.p, s.s);
-    s.next_known = false;
+    forget_next(i, s);
     if (s.next == s.n) {
       end_issue(j, i, s);
     } else if (config_.issue_burst > 0 && ++burst_count_ >= config_.issue_burst) {
@@ -653,19 +661,19 @@ class RayPipeline {
   };
   Pick pick_ray(Cycle now) {
     if (config_.issue == IssuePolicy::kOldest) {
-      if (slots_[static_cast<std::size_t>(issue_q_.front())].ready_at > now) return {};
+      if (view_[static_cast<std::size_t>(issue_q_.front())].ready_at > now) return {};
       return {0, 0};
     }
     std::size_t oldest = kNone, best = kNone;
     int best_hits = 0;
     for (std::size_t k = 0; k < issue_q_.size(); ++k) {
-      Slot& s = slots_[static_cast<std::size_t>(issue_q_.at(k))];
-      if (s.ready_at > now) continue;
+      const int i = issue_q_.at(k);
+      if (view_[static_cast<std::size_t>(i)].ready_at > now) continue;
       if (oldest == kNone) {
         oldest = k;
         if (bypass_ >= config_.issue_bypass_limit) return {oldest, oldest};
       }
-      const int hits = row_hits(s);
+      const int hits = row_hits(i);
       if (hits > best_hits) {
         best_hits = hits;
         best = k;
@@ -677,14 +685,16 @@ class RayPipeline {
 
   // How many of the ray's next sample's four DIMM words lie in the row last
   // requested in their bank.
-  int row_hits(Slot& s) {
+  int row_hits(int i) {
+    IssueView& v = view_[static_cast<std::size_t>(i)];
+    if (v.hits_epoch == row_epoch_) return v.hits;
+    Slot& s = slots_[static_cast<std::size_t>(i)];
     know_next_sample(s);
-    if (s.hits_epoch == row_epoch_) return s.hits;
     int hits = 0;
     for (std::size_t d = 0; d < layout::kDimms; ++d)
       hits += last_row_[d][s.next_addr[d].bank] == s.next_addr[d].row ? 1 : 0;
-    s.hits = hits;
-    s.hits_epoch = row_epoch_;
+    v.hits = hits;
+    v.hits_epoch = row_epoch_;
     return hits;
   }
 
@@ -702,11 +712,15 @@ class RayPipeline {
 
   void know_next_sample(Slot& s) {
     if (s.next_known) return;
-    s.hits_epoch = kNoEpoch;
     s.next_access = hls::address_generator<P>(f_.geometry, s.p);
     s.next_coord = layout::Vizard2Layout::neighbourhood(layout_.corner<P>(s.next_access));
     for (std::size_t d = 0; d < layout::kDimms; ++d) s.next_addr[d] = mapping_.map(s.next_coord[d]);
     s.next_known = true;
+  }
+  // Ray i moved on to another sample: its next sample and row hits are unknown.
+  void forget_next(int i, Slot& s) {
+    s.next_known = false;
+    view_[static_cast<std::size_t>(i)].hits_epoch = kNoEpoch;
   }
 
   // Space leaping: if the chosen ray's next sample lies in an empty block, leap
@@ -719,12 +733,14 @@ class RayPipeline {
     const std::uint64_t run = hls::leap_run<P>(f_.geometry, f_.leap, s.p, s.s, s.n - s.next, b);
     hls::step_position<P>(s.p, s.s);
     s.next += run;
-    s.next_known = false;
-    s.ready_at = now + static_cast<Cycle>(std::max(config_.latency.leap, 1));
+    const int i = issue_q_.at(j);
+    forget_next(i, s);
+    view_[static_cast<std::size_t>(i)].ready_at =
+        now + static_cast<Cycle>(std::max(config_.latency.leap, 1));
     stats_.samples_skipped += run;
     ++stats_.leaps;
     ++events_;
-    if (s.next == s.n) end_issue(j, issue_q_.at(j), s);
+    if (s.next == s.n) end_issue(j, i, s);
     return true;
   }
 
@@ -772,7 +788,7 @@ class RayPipeline {
       s = Slot{};
       s.x = x;
       s.y = y;
-      s.ready_at = ready;
+      view_[static_cast<std::size_t>(i)] = IssueView{ready, kNoEpoch, 0};
       s.n = ray.n.to_uint64();
       s.weights = hls::segment_weights<P>(f_.segments, ray, hls::pixel_jitter<P>(f_.geometry, x, y));
       s.free = false;
@@ -944,6 +960,7 @@ class RayPipeline {
   ref::QuantImage* image_ = nullptr;
 
   std::vector<Slot> slots_;
+  std::vector<IssueView> view_;  // per ray slot
   sim::Fifo<int> free_;     // free ray slots
   sim::Fifo<int> issue_q_;  // rays with samples to issue, oldest first
   sim::Fifo<MissPixel> miss_;
