@@ -21,36 +21,38 @@ BrickedMapping::BrickedMapping(const WordGrid& grid, const sdram::Geometry& geom
     space *= std::uint64_t{bricks_[k]} << shift_[k];
   }
   check_fits(name(), space, geometry);
+  for (std::size_t k = 0; k < 3; ++k) edge_mask_[k] = (1u << shift_[k]) - 1u;
+  inner_z_shift_ = shift_[0] + shift_[1];
+  brick_bits_ = shift_[0] + shift_[1] + shift_[2];
+  column_bits_ = std::countr_zero(geometry.columns);
+  bank_mask_ = geometry.banks - 1u;
+  row_offset_mask_ = (std::uint64_t{1} << (column_bits_ + std::countr_zero(geometry.banks))) - 1u;
   pow2_ = std::has_single_bit(bricks_[0]) && std::has_single_bit(bricks_[1]);
   shift_x_ = std::countr_zero(bricks_[0]);
   shift_xy_ = shift_x_ + std::countr_zero(bricks_[1]);
 }
 
 std::uint64_t BrickedMapping::index(const WordCoord& c) const {
-  const std::uint32_t v[3] = {c.x, c.y2, c.z2};
-  std::uint64_t brick = 0, inner = 0;
   // Step 1: the brick's number, x fastest; step 2: the word inside it, x fastest.
-  for (int k = 2; k >= 0; --k) {
-    const auto i = static_cast<std::size_t>(k);
-    brick = brick * bricks_[i] + (v[i] >> shift_[i]);
-    inner = (inner << shift_[i]) | (v[i] & ((1u << shift_[i]) - 1u));
-  }
-  const std::uint32_t brick_bits = shift_[0] + shift_[1] + shift_[2];
-  const std::uint64_t i = (brick << brick_bits) | inner;
-  if (!swizzle_) return i;
+  const std::uint64_t brick =
+      (std::uint64_t{c.z2 >> shift_[2]} * bricks_[1] + (c.y2 >> shift_[1])) * bricks_[0] +
+      (c.x >> shift_[0]);
+  const std::uint64_t inner = (std::uint64_t{c.z2 & edge_mask_[2]} << inner_z_shift_) |
+                              (std::uint64_t{c.y2 & edge_mask_[1]} << shift_[0]) |
+                              (c.x & edge_mask_[0]);
+  const std::uint64_t i = (brick << brick_bits_) | inner;
+  return swizzle_ ? swizzled(i) : i;
+}
+
+std::uint64_t BrickedMapping::swizzled(std::uint64_t i) const {
   // Rotate the bank field by (y + z) of the brick that starts the row group.
-  const sdram::Geometry& g = geometry();
-  const int cb = std::countr_zero(g.columns);
-  const int bb = std::countr_zero(g.banks);
-  const std::uint64_t row = i >> (cb + bb);
-  const std::uint64_t first = (row << (cb + bb)) >> brick_bits;
+  const std::uint64_t first = (i & ~row_offset_mask_) >> brick_bits_;
   const std::uint64_t by = pow2_ ? (first >> shift_x_) & (bricks_[1] - 1u)
                                  : (first / bricks_[0]) % bricks_[1];
   const std::uint64_t bz =
       pow2_ ? first >> shift_xy_ : first / (std::uint64_t{bricks_[0]} * bricks_[1]);
-  const std::uint64_t mask = g.banks - 1u;
-  const std::uint64_t bank = (((i >> cb) & mask) + by + bz) & mask;
-  return (i & ~(mask << cb)) | (bank << cb);
+  const std::uint64_t bank = (((i >> column_bits_) & bank_mask_) + by + bz) & bank_mask_;
+  return (i & ~(bank_mask_ << column_bits_)) | (bank << column_bits_);
 }
 
 }  // namespace voxcast::rtl::layout

@@ -31,8 +31,19 @@ class BrickedMapping final : public AddressMapping {
   std::uint64_t index(const WordCoord& c) const override;
 
  private:
+  // The bank of the unswizzled index `i` rotated.
+  std::uint64_t swizzled(std::uint64_t i) const;
+
+  // Everything index() needs that depends only on the grid, the bricks and
+  // the geometry, computed once: it runs for four words per sample.
   std::array<std::uint32_t, 3> shift_{};  // log2 of the brick edges
   std::array<std::uint32_t, 3> bricks_{};  // bricks per axis (rounded up)
+  std::array<std::uint32_t, 3> edge_mask_{};  // brick edge - 1: a word's offset in its brick
+  std::uint32_t inner_z_shift_ = 0;           // shift_[0] + shift_[1]
+  std::uint32_t brick_bits_ = 0;              // log2 of the words in a brick
+  int column_bits_ = 0;                       // log2 of the columns
+  std::uint64_t bank_mask_ = 0;               // banks - 1
+  std::uint64_t row_offset_mask_ = 0;         // the column and bank bits of an index
   // The swizzle's divisions by bricks_[0] and bricks_[0] * bricks_[1] as
   // shifts when those are powers of two (every 2^n volume); 0: divide.
   int shift_x_ = 0, shift_xy_ = 0;

@@ -50,31 +50,24 @@ Controller::Controller(DimmConfig dimm, std::unique_ptr<CommandScheduler> schedu
       scheduler_(std::move(scheduler)),
       refresh_(std::move(refresh)),
       config_(config),
-      completions_("sdram.completions", config.return_depth) {
+      pending_(config.queue_depth),
+      completions_("sdram.completions", config.return_depth),
+      in_flight_(config.return_depth) {
   if (!scheduler_ || !refresh_)
     throw Error("Controller: a scheduler and a refresh policy are required");
   if (config_.queue_depth == 0) throw Error("Controller: request queue depth 0");
-  pending_.reserve(config_.queue_depth);
 }
 
-void Controller::push(const Request& r) {
-  // The messages are built only on the error paths: a stream per request
-  // cost more than the rest of the controller's cycle.
-  if (!ready()) {
-    std::ostringstream os;
-    os << "controller request queue (depth " << config_.queue_depth << ") is full: push of " << r;
-    throw Error(os.str());
-  }
-  const Geometry& g = dimm_.geometry();
-  if (r.address.bank >= g.banks || r.address.row >= g.rows || r.address.column >= g.columns) {
-    std::ostringstream os;
-    os << "controller: " << r << " is outside the DIMM (" << g << ")";
-    throw Error(os.str());
-  }
-  PendingRequest p;
-  p.request = r;
-  pending_.push_back(p);
-  ++stats_.requests;
+void Controller::queue_full(const Request& r) const {
+  std::ostringstream os;
+  os << "controller request queue (depth " << config_.queue_depth << ") is full: push of " << r;
+  throw Error(os.str());
+}
+
+void Controller::outside_the_dimm(const Request& r) const {
+  std::ostringstream os;
+  os << "controller: " << r << " is outside the DIMM (" << dimm_.geometry() << ")";
+  throw Error(os.str());
 }
 
 void Controller::tick(Cycle now) {
@@ -94,7 +87,7 @@ Cycle Controller::next_event(Cycle now) const {
   Cycle w = refresh_->wake(dimm_.refresh(), now);
   if (!in_flight_.empty()) w = std::min(w, in_flight_.front().data.last);
   if (!pending_.empty())
-    w = std::min(w, scheduler_->wake(SchedulerView{pending_, dimm_, now, column_allowed()}));
+    w = std::min(w, scheduler_->wake(SchedulerView{pending_.span(), dimm_, now, column_allowed()}));
   return std::max(w, now + 1);
 }
 
@@ -119,7 +112,7 @@ bool Controller::column_allowed() const {
 }
 
 void Controller::schedule(Cycle now) {
-  const SchedulerView view{pending_, dimm_, now, column_allowed()};
+  const SchedulerView view{pending_.span(), dimm_, now, column_allowed()};
   const std::optional<Decision> d = scheduler_->pick(view);
   if (!d || d->command == Command::kNop) return;
 
@@ -136,11 +129,11 @@ void Controller::schedule(Cycle now) {
   if (d->request) {
     if (*d->request >= pending_.size()) fail("no such pending request");
     const Request& r = pending_[*d->request].request;
-    const Command expected = dimm_.next_command(column_command(r.kind), r.address);
+    outcome = dimm_.row_outcome(r.address);
+    const Command expected = first_command(*outcome, column_command(r.kind));
     if (d->command != expected || d->address != r.address) {
       fail("not the request's next command (" + describe(expected, r.address) + ")");
     }
-    outcome = dimm_.row_outcome(r.address);
   } else if (is_column_command(d->command)) {
     fail("a column command must serve a request");
   }
@@ -176,14 +169,14 @@ void Controller::schedule(Cycle now) {
   }
   if (is_column_command(d->command)) {
     ++(d->command == Command::kRd ? stats_.reads : stats_.writes);
-    in_flight_.push_back(Completion{
+    in_flight_.push(Completion{
         .request = p.request,
         .outcome = *p.outcome,
         .first_command = p.first_command,
         .column_command = now,
         .data = *issued.data,
     });
-    pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(*d->request));
+    pending_.erase(*d->request);
   }
 }
 
@@ -200,13 +193,14 @@ void Controller::retire(Cycle now) {
   const std::uint64_t burst_bytes =
       static_cast<std::uint64_t>(dimm_.timing().BL) * dimm_.geometry().bytes_per_beat();
   while (!in_flight_.empty() && in_flight_.front().data.last <= now) {
-    const Completion c = in_flight_.front();
-    in_flight_.pop_front();
+    const Completion& c = in_flight_.front();
+    const Cycle latency = c.latency();
     completions_.push(c);  // a slot was reserved when the column command was issued
+    in_flight_.pop();
     ++stats_.completed;
     stats_.bytes += burst_bytes;
-    stats_.latency_sum += c.latency();
-    stats_.latency_max = std::max(stats_.latency_max, c.latency());
+    stats_.latency_sum += latency;
+    stats_.latency_max = std::max(stats_.latency_max, latency);
   }
 }
 

@@ -20,11 +20,12 @@
 // room for its data (credits), and the FIFO never overflows.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <iosfwd>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "rtl_model/sdram/dimm.hpp"
@@ -79,6 +80,79 @@ struct ControllerStats {
 
 std::ostream& operator<<(std::ostream& os, const ControllerStats& s);
 
+// The Controller's pending requests, oldest first and contiguous (the
+// scheduler's view is a span). Serving the oldest, which a row-hit stream
+// does with nearly every command, advances the start instead of moving the
+// rest down (a memmove per command in a std::vector); a later request moves
+// the shorter side. The storage holds twice the depth, and the entries move
+// back to its start when the end reaches it: at most once per `depth`
+// requests served.
+class PendingQueue {
+ public:
+  explicit PendingQueue(std::size_t depth) : slots_(2 * depth) {}
+
+  std::size_t size() const { return end_ - begin_; }
+  bool empty() const { return end_ == begin_; }
+  std::span<const PendingRequest> span() const { return {slots_.data() + begin_, size()}; }
+  PendingRequest& operator[](std::size_t i) { return slots_[begin_ + i]; }
+  const PendingRequest& operator[](std::size_t i) const { return slots_[begin_ + i]; }
+  const PendingRequest& front() const { return slots_[begin_]; }
+
+  // The caller keeps size() below the depth.
+  void push_back(const PendingRequest& p) {
+    if (end_ == slots_.size()) compact();
+    slots_[end_++] = p;
+  }
+  // Removes entry i; the others keep their order.
+  void erase(std::size_t i) {
+    const auto first = slots_.begin() + static_cast<std::ptrdiff_t>(begin_);
+    const auto at = first + static_cast<std::ptrdiff_t>(i);
+    if (i < size() / 2) {
+      std::copy_backward(first, at, at + 1);
+      ++begin_;
+    } else {
+      std::copy(at + 1, slots_.begin() + static_cast<std::ptrdiff_t>(end_), at);
+      --end_;
+    }
+  }
+
+ private:
+  void compact() {
+    std::copy(slots_.begin() + static_cast<std::ptrdiff_t>(begin_),
+              slots_.begin() + static_cast<std::ptrdiff_t>(end_), slots_.begin());
+    end_ -= begin_;
+    begin_ = 0;
+  }
+
+  std::vector<PendingRequest> slots_;
+  std::size_t begin_ = 0, end_ = 0;  // the entries: slots_[begin_, end_)
+};
+
+// The Controller's accesses in flight, in data order: a ring of a fixed
+// number of slots (column_allowed() keeps them within the return depth).
+// Not a sim::Fifo: no statistics or protocol checks are wanted for a list
+// the Controller alone fills and drains, once per command.
+class InFlight {
+ public:
+  explicit InFlight(std::size_t depth) : slots_(depth) {}
+
+  std::size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  const Completion& front() const { return slots_[head_]; }
+  void push(const Completion& c) { slots_[wrap(head_ + count_++)] = c; }
+  void pop() {
+    head_ = wrap(head_ + 1);
+    --count_;
+  }
+
+ private:
+  // i mod depth for i < 2 * depth.
+  std::size_t wrap(std::size_t i) const { return i >= slots_.size() ? i - slots_.size() : i; }
+
+  std::vector<Completion> slots_;
+  std::size_t head_ = 0, count_ = 0;
+};
+
 class Controller {
  public:
   // Throws voxcast::Error for a null policy or a zero depth.
@@ -88,8 +162,18 @@ class Controller {
   // valid/ready request port.
   bool ready() const { return pending_.size() < config_.queue_depth; }
   // Enqueues `r` (its arrival is taken as given). Throws voxcast::Error when
-  // not ready or when the address is outside the DIMM.
-  void push(const Request& r);
+  // not ready or when the address is outside the DIMM. Inline: the pipeline
+  // pushes about one request per cycle and DIMM.
+  void push(const Request& r) {
+    if (!ready()) queue_full(r);
+    const Geometry& g = dimm_.geometry();
+    if (r.address.bank >= g.banks || r.address.row >= g.rows || r.address.column >= g.columns)
+      outside_the_dimm(r);
+    PendingRequest p;
+    p.request = r;
+    pending_.push_back(p);
+    ++stats_.requests;
+  }
 
   // One SDRAM clock; cycles strictly increasing.
   void tick(Cycle now);
@@ -119,6 +203,10 @@ class Controller {
   void set_observer(CommandObserver* o) { dimm_.set_observer(o); }
 
  private:
+  // push()'s errors; the messages are built only here (a stream per request
+  // cost more than the rest of the controller's cycle).
+  [[noreturn]] void queue_full(const Request& r) const;
+  [[noreturn]] void outside_the_dimm(const Request& r) const;
   void retire(Cycle now);
   bool step_refresh(Cycle now);  // true while a refresh sequence owns the bus
   void schedule(Cycle now);
@@ -129,9 +217,11 @@ class Controller {
   std::unique_ptr<CommandScheduler> scheduler_;
   std::unique_ptr<RefreshPolicy> refresh_;
   ControllerConfig config_;
-  std::vector<PendingRequest> pending_;
-  std::deque<Completion> in_flight_;  // in data order
+  PendingQueue pending_;
   sim::Fifo<Completion> completions_;
+  // In data order (a std::deque here allocated and freed a block every few
+  // accesses).
+  InFlight in_flight_;
   bool refreshing_ = false;
   Cycle last_tick_ = kNever;
   ControllerStats stats_;

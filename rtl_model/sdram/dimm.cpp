@@ -130,13 +130,6 @@ Dimm::Dimm(DimmConfig config)
   }
 }
 
-bool Dimm::all_banks_idle() const {
-  for (const Bank& b : banks_) {
-    if (b.state != BankState::kIdle) return false;
-  }
-  return true;
-}
-
 // ---- Timing: the constraint table --------------------------------------------------------
 void Dimm::check_bank_exists(Command cmd, std::uint32_t bank) const {
   if (is_rank_command(cmd) || bank < bank_count()) return;
@@ -204,73 +197,51 @@ Gate Dimm::gate(Command cmd, std::uint32_t bank, Cycle now) const {
 
 // ---- Legality ----------------------------------------------------------------------------
 std::optional<std::string> Dimm::violation(Command cmd, const Address& a, Cycle now) const {
-  std::string why;
-  if (check(cmd, a, now, &why)) return std::nullopt;
-  return why;
+  const Rule rule = first_broken(cmd, a, now);
+  if (rule == Rule::kNone) return std::nullopt;
+  return explain(rule, cmd, a, now);
 }
 
-bool Dimm::check(Command cmd, const Address& a, Cycle now, std::string* why) const {
-  // Builds the message only when the caller asked for one.
-  auto reject = [&](auto&& reason) {
-    if (why != nullptr) {
-      std::ostringstream os;
-      os << describe(cmd, a) << " at cycle " << now << ": ";
-      reason(os);
-      *why = os.str();
-    }
-    return false;
-  };
-  if (cmd == Command::kNop) return true;
-
-  // Step 1: the address exists.
+std::string Dimm::explain(Rule rule, Command cmd, const Address& a, Cycle now) const {
+  std::ostringstream os;
+  os << describe(cmd, a) << " at cycle " << now << ": ";
   const Geometry& g = config_.geometry;
-  if (!is_rank_command(cmd)) {
-    if (a.bank >= g.banks) {
-      return reject(
-          [&](std::ostream& os) { os << "no such bank (the DIMM has " << g.banks << ")"; });
-    }
-    if ((cmd == Command::kAct || is_column_command(cmd)) && a.row >= g.rows) {
-      return reject([&](std::ostream& os) { os << "no such row (a bank has " << g.rows << ")"; });
-    }
-    if (is_column_command(cmd) && a.column >= g.columns) {
-      return reject(
-          [&](std::ostream& os) { os << "no such column (a row has " << g.columns << ")"; });
-    }
-  }
-  // Step 2: one command per clock, in order.
-  if (now <= last_command_) {
-    return reject([&](std::ostream& os) {
+  switch (rule) {
+    case Rule::kNone:
+      break;
+    case Rule::kNoSuchBank:
+      os << "no such bank (the DIMM has " << g.banks << ")";
+      break;
+    case Rule::kNoSuchRow:
+      os << "no such row (a bank has " << g.rows << ")";
+      break;
+    case Rule::kNoSuchColumn:
+      os << "no such column (a row has " << g.columns << ")";
+      break;
+    case Rule::kCommandBus:
       os << "the command bus already carried a command at cycle " << last_command_
          << " (one command per clock, in cycle order)";
-    });
-  }
-  // Step 3: refresh not overdue; no row open beyond tRAS(max).
-  if (refresh_.overdue(now)) {
-    return reject([&](std::ostream& os) {
+      break;
+    case Rule::kRefreshOverdue:
       os << "refresh overdue: " << refresh_.owed(now) << " REF owed (deadline was cycle "
          << refresh_.deadline() << "; " << refresh_ << ")";
-    });
-  }
-  for (std::uint32_t b = 0; b < bank_count(); ++b) {
-    const Bank& k = banks_[b];
-    if (k.state == BankState::kActive && now - k.activated_at > timing_.tRAS_max) {
-      return reject([&](std::ostream& os) {
-        os << "bank " << b << " has held row " << k.open_row << " open since cycle "
-           << k.activated_at << ", beyond tRAS(max) = " << timing_.tRAS_max << " cycles";
-      });
-    }
-  }
-  // Step 4: the bank state allows the command.
-  if (!check_state(cmd, a, nullptr)) {
-    return reject([&](std::ostream& os) {
-      std::string state;
-      check_state(cmd, a, &state);
-      os << state;
-    });
-  }
-  // Step 5: every row of the constraint table (the scan names the binding row).
-  if (earliest(cmd, a.bank, now) > now) {
-    return reject([&](std::ostream& os) {
+      break;
+    case Rule::kRowOpenTooLong:
+      // The first bank over the limit, as a scan in bank order finds it.
+      for (std::uint32_t b = 0; b < bank_count(); ++b) {
+        const Bank& k = banks_[b];
+        if (k.state == BankState::kActive && now - k.activated_at > timing_.tRAS_max) {
+          os << "bank " << b << " has held row " << k.open_row << " open since cycle "
+             << k.activated_at << ", beyond tRAS(max) = " << timing_.tRAS_max << " cycles";
+          break;
+        }
+      }
+      break;
+    case Rule::kBankState:
+      os << state_violation(cmd, a);
+      break;
+    case Rule::kTiming: {
+      // The table scan names the binding row.
       const Gate gt = gate(cmd, a.bank, now);
       const Constraint& c = *gt.binding;
       if (&c == table_.four_activate_window()) {
@@ -278,70 +249,56 @@ bool Dimm::check(Command cmd, const Address& a, Cycle now, std::string* why) con
            << " ACTs since the ACT to bank " << gt.since_bank << " at cycle " << gt.since
            << ": a fifth needs " << c.cycles << " cycles after it; earliest cycle " << gt.earliest
            << ")";
-        return;
+        break;
       }
       os << "violates " << c.parameter << " (" << c.prev;
       if (!is_rank_command(c.prev)) os << " to bank " << gt.since_bank;
       os << " at cycle " << gt.since << ", " << c.scope << ", needs " << c.cycles
          << " cycles; earliest cycle " << gt.earliest << ")";
-    });
+      break;
+    }
   }
-  return true;
+  return os.str();
 }
 
-bool Dimm::check_state(Command cmd, const Address& a, std::string* why) const {
-  auto reject = [&](const std::string& reason) {
-    if (why != nullptr) *why = reason;
-    return false;
-  };
+std::string Dimm::state_violation(Command cmd, const Address& a) const {
   switch (cmd) {
     case Command::kAct: {
       const Bank& k = banks_[a.bank];
-      if (k.state == BankState::kActive) {
-        return reject("bank " + std::to_string(a.bank) + " already has row " +
-                      std::to_string(k.open_row) + " open (precharge first)");
-      }
-      return true;
+      return "bank " + std::to_string(a.bank) + " already has row " + std::to_string(k.open_row) +
+             " open (precharge first)";
     }
     case Command::kRd:
     case Command::kWr:
     case Command::kRda: {
       const Bank& k = banks_[a.bank];
-      if (k.state == BankState::kIdle) {
-        return reject("bank " + std::to_string(a.bank) + " is idle (no open row)");
-      }
-      if (k.open_row != a.row) {
-        return reject("bank " + std::to_string(a.bank) + " has row " + std::to_string(k.open_row) +
-                      " open, not row " + std::to_string(a.row));
-      }
-      return true;
+      if (k.state == BankState::kIdle)
+        return "bank " + std::to_string(a.bank) + " is idle (no open row)";
+      return "bank " + std::to_string(a.bank) + " has row " + std::to_string(k.open_row) +
+             " open, not row " + std::to_string(a.row);
     }
     case Command::kRef:
       for (std::uint32_t b = 0; b < bank_count(); ++b) {
         if (banks_[b].state == BankState::kActive) {
-          return reject("bank " + std::to_string(b) + " has row " +
-                        std::to_string(banks_[b].open_row) +
-                        " open; AUTO REFRESH needs every bank precharged");
+          return "bank " + std::to_string(b) + " has row " + std::to_string(banks_[b].open_row) +
+                 " open; AUTO REFRESH needs every bank precharged";
         }
       }
-      return true;
+      break;
     case Command::kNop:
     case Command::kPre:
     case Command::kPrea:
-      return true;
+      break;
   }
-  return true;
+  return {};
 }
 
 // ---- Issue -------------------------------------------------------------------------------
 Issued Dimm::issue(Command cmd, const Address& a, Cycle now) {
-  // The message is built only for a rejected command (check() again with a
-  // string): a string per command cost more than the check.
-  if (!check(cmd, a, now, nullptr)) {
-    std::string why;
-    check(cmd, a, now, &why);
-    throw Error(why);
-  }
+  // The message is built only for a rejected command: a string per command
+  // cost more than the check.
+  if (const Rule rule = first_broken(cmd, a, now); rule != Rule::kNone)
+    throw Error(explain(rule, cmd, a, now));
   Issued issued;
   issued.command = cmd;
   issued.address = a;
@@ -366,6 +323,8 @@ void Dimm::apply(Command cmd, const Address& a, Cycle now) {
   switch (cmd) {
     case Command::kAct:
       banks_[a.bank] = Bank{BankState::kActive, a.row, now};
+      ++open_banks_;
+      oldest_activation_ = std::min(oldest_activation_, now);
       ++stats_.banks[a.bank].activates;
       activates_[oldest_activate_] = Activate{now, a.bank};
       oldest_activate_ = (oldest_activate_ + 1) % activates_.size();
@@ -417,6 +376,17 @@ void Dimm::close_row(std::uint32_t b, Cycle now) {
   stats_.banks[b].open_cycles += now - banks_[b].activated_at;
   ++stats_.banks[b].precharges;
   banks_[b].state = BankState::kIdle;
+  summarize_open_rows();
+}
+
+void Dimm::summarize_open_rows() {
+  open_banks_ = 0;
+  oldest_activation_ = kNoOpenRow;
+  for (const Bank& k : banks_) {
+    if (k.state != BankState::kActive) continue;
+    ++open_banks_;
+    oldest_activation_ = std::min(oldest_activation_, k.activated_at);
+  }
 }
 
 }  // namespace voxcast::rtl::sdram

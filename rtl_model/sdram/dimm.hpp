@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,6 +70,20 @@ enum class RowOutcome : std::uint8_t {
 };
 
 std::ostream& operator<<(std::ostream& os, RowOutcome o);
+
+// The command a request meets first: its column command on a hit, ACT on a
+// miss, PRE on a conflict.
+constexpr Command first_command(RowOutcome o, Command column_command) {
+  switch (o) {
+    case RowOutcome::kHit:
+      return column_command;
+    case RowOutcome::kMiss:
+      return Command::kAct;
+    case RowOutcome::kConflict:
+      return Command::kPre;
+  }
+  return Command::kNop;
+}
 
 // Cycles at which data beats are on the DQ bus, inclusive.
 struct DataWindow {
@@ -136,7 +151,7 @@ class Dimm {
   const DimmStats& stats() const { return stats_; }
   const Bank& bank(std::uint32_t b) const { return banks_.at(b); }
   std::uint32_t bank_count() const { return config_.geometry.banks; }
-  bool all_banks_idle() const;
+  bool all_banks_idle() const { return open_banks_ == 0; }
   Cycle last_command_cycle() const { return last_command_; }
   // Told of every accepted command (a trace); nullptr: none.
   void set_observer(CommandObserver* o) { observer_ = o; }
@@ -154,7 +169,7 @@ class Dimm {
 
   // Full legality at `now`.
   bool can_issue(Command cmd, const Address& a, Cycle now) const {
-    return check(cmd, a, now, nullptr);
+    return first_broken(cmd, a, now) == Rule::kNone;
   }
   // Why `cmd` is illegal at `now`, or nothing when it is legal.
   std::optional<std::string> violation(Command cmd, const Address& a, Cycle now) const;
@@ -171,22 +186,69 @@ class Dimm {
   }
   Command next_command(Command column_command, const Address& a) const {
     if (!is_column_command(column_command)) not_a_column_command(column_command);
-    switch (row_outcome(a)) {
-      case RowOutcome::kHit:
-        return column_command;
-      case RowOutcome::kMiss:
-        return Command::kAct;
-      case RowOutcome::kConflict:
-        return Command::kPre;
-    }
-    return Command::kNop;
+    return first_command(row_outcome(a), column_command);
   }
 
  private:
-  bool check(Command cmd, const Address& a, Cycle now, std::string* why) const;
-  bool check_state(Command cmd, const Address& a, std::string* why) const;
+  // The rules of the contract in the order they are checked; the first one a
+  // command breaks names it in violation()'s message.
+  enum class Rule : std::uint8_t {
+    kNone,        // legal
+    kNoSuchBank,  // step 1: the address exists
+    kNoSuchRow,
+    kNoSuchColumn,
+    kCommandBus,      // step 2: one command per clock, in order
+    kRefreshOverdue,  // step 3: refresh in time ...
+    kRowOpenTooLong,  // ... and no row open beyond tRAS(max)
+    kBankState,       // step 4: the bank state allows the command
+    kTiming,          // step 5: the constraint table
+  };
+
+  // The legality test of every command (the referee runs it at least once
+  // per command): comparisons only, no strings; explain() builds the message
+  // for the rule it returns.
+  Rule first_broken(Command cmd, const Address& a, Cycle now) const {
+    if (cmd == Command::kNop) return Rule::kNone;
+    const Geometry& g = config_.geometry;
+    if (!is_rank_command(cmd)) {
+      if (a.bank >= g.banks) return Rule::kNoSuchBank;
+      if ((cmd == Command::kAct || is_column_command(cmd)) && a.row >= g.rows)
+        return Rule::kNoSuchRow;
+      if (is_column_command(cmd) && a.column >= g.columns) return Rule::kNoSuchColumn;
+    }
+    if (now <= last_command_) return Rule::kCommandBus;
+    if (refresh_.overdue(now)) return Rule::kRefreshOverdue;
+    // The oldest open row is the first to exceed tRAS(max).
+    if (now - oldest_activation_ > timing_.tRAS_max) return Rule::kRowOpenTooLong;
+    if (!state_allows(cmd, a)) return Rule::kBankState;
+    if (earliest(cmd, a.bank, now) > now) return Rule::kTiming;
+    return Rule::kNone;
+  }
+  // Step 4 of first_broken(); state_violation() says why not.
+  bool state_allows(Command cmd, const Address& a) const {
+    switch (cmd) {
+      case Command::kAct:
+        return banks_[a.bank].state == BankState::kIdle;
+      case Command::kRd:
+      case Command::kWr:
+      case Command::kRda:
+        return banks_[a.bank].state == BankState::kActive && banks_[a.bank].open_row == a.row;
+      case Command::kRef:
+        return open_banks_ == 0;
+      case Command::kNop:
+      case Command::kPre:
+      case Command::kPrea:
+        return true;
+    }
+    return true;
+  }
+  // The messages (built only for an illegal command).
+  std::string explain(Rule rule, Command cmd, const Address& a, Cycle now) const;
+  std::string state_violation(Command cmd, const Address& a) const;
   void apply(Command cmd, const Address& a, Cycle now);
   void close_row(std::uint32_t b, Cycle now);
+  // open_banks_ and oldest_activation_ from banks_ (after a row closed).
+  void summarize_open_rows();
   void check_bank_exists(Command cmd, std::uint32_t bank) const;
   [[noreturn]] void no_such_bank(Command cmd, std::uint32_t bank) const;
   [[noreturn]] static void not_a_column_command(Command cmd);
@@ -196,6 +258,11 @@ class Dimm {
   ConstraintTable table_;
   RefreshTracker refresh_;
   std::vector<Bank> banks_;
+  // Summaries of banks_ for the checks of every command: the banks with a
+  // row open, and the earliest activated_at among them (kNoOpenRow: none).
+  static constexpr Cycle kNoOpenRow = std::numeric_limits<Cycle>::max() / 4;
+  std::uint32_t open_banks_ = 0;
+  Cycle oldest_activation_ = kNoOpenRow;
   // Cycle of the last command of each kind per bank (ACT, RD, WR, PRE) and
   // for the rank (PREA, REF).
   std::vector<std::array<Cycle, kCommandCount>> last_by_bank_;

@@ -18,11 +18,18 @@ RefreshTracker::RefreshTracker(Cycle interval, int postpone_limit)
     os << "refresh: postponement limit " << postpone_limit_ << " is outside [0, 8]";
     throw Error(os.str());
   }
+  update_due();
 }
 
 void RefreshTracker::on_refresh(Cycle now) {
   ++issued_;
   last_refresh_ = now;
+  update_due();
+}
+
+void RefreshTracker::update_due() {
+  next_due_ = (issued_ + 1) * interval_;
+  deadline_ = (issued_ + 2 + postpone_limit_) * interval_;
 }
 
 std::ostream& operator<<(std::ostream& os, const RefreshTracker& r) {

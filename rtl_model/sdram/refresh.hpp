@@ -37,20 +37,30 @@ class RefreshTracker {
   Cycle last_refresh() const { return last_refresh_; }  // kNever before the first
 
   std::int64_t owed(Cycle now) const { return now / interval_ - issued_; }
-  bool due(Cycle now) const { return owed(now) >= 1; }
-  bool overdue(Cycle now) const { return owed(now) > 1 + postpone_limit_; }
+  // owed(now) >= 1 and owed(now) > 1 + postpone_limit as comparisons with
+  // the cycles at which they start to hold (issued_ >= 0, so the truncating
+  // division agrees with them for negative cycles too): the Dimm and the
+  // eager policy ask every cycle, and a division per question was a visible
+  // share of the controller's cycle.
+  bool due(Cycle now) const { return now >= next_due_; }
+  bool overdue(Cycle now) const { return now >= deadline_; }
   // The cycle at which the next REF falls due.
-  Cycle next_due() const { return (issued_ + 1) * interval_; }
+  Cycle next_due() const { return next_due_; }
   // The first cycle at which refresh is overdue.
-  Cycle deadline() const { return (issued_ + 2 + postpone_limit_) * interval_; }
+  Cycle deadline() const { return deadline_; }
 
   void on_refresh(Cycle now);
 
  private:
+  // next_due_ and deadline_ from issued_.
+  void update_due();
+
   Cycle interval_;
   int postpone_limit_;
   std::int64_t issued_ = 0;
   Cycle last_refresh_;
+  Cycle next_due_ = 0;  // (issued_ + 1) * interval_
+  Cycle deadline_ = 0;  // (issued_ + 2 + postpone_limit_) * interval_
 };
 
 std::ostream& operator<<(std::ostream& os, const RefreshTracker& r);

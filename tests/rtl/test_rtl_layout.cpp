@@ -14,6 +14,7 @@
 #include "refmodel/error.hpp"
 #include "refmodel/precision/preset_profiles.hpp"
 #include "rtl_model/layout/address_mapping.hpp"
+#include "rtl_model/layout/bricked_mapping.hpp"
 #include "rtl_model/layout/vizard2_layout.hpp"
 
 namespace voxcast::test {
@@ -272,6 +273,51 @@ TEST(AddressMapping, SwizzledBricksPutEveryNeighbourBrickInAnotherBank) {
         ++checked;
       }
   EXPECT_EQ(same_plain_yz, 2 * checked);
+}
+
+// The bricked index as its definition reads (bricked_mapping.hpp): the
+// brick's number and the word inside it, x fastest, then the bank field
+// rotated by (brick y + brick z) of the brick that starts the row group.
+// BrickedMapping computes the same from shifts and masks prepared once.
+std::uint64_t bricked_index_by_definition(const WordCoord& c, const WordGrid& grid,
+                                          const rtl::sdram::Geometry& geo,
+                                          std::array<std::uint32_t, 3> brick, bool swizzle) {
+  const std::uint32_t v[3] = {c.x, c.y2, c.z2};
+  const std::uint32_t n[3] = {grid.nx, grid.ny2, grid.nz2};
+  std::uint64_t bricks[3], number = 0, inner = 0, words = 1;
+  for (int k = 2; k >= 0; --k) {
+    const auto i = static_cast<std::size_t>(k);
+    bricks[i] = (n[i] + brick[i] - 1) / brick[i];
+    number = number * bricks[i] + v[i] / brick[i];
+    inner = inner * brick[i] + v[i] % brick[i];
+    words *= brick[i];
+  }
+  const std::uint64_t index = number * words + inner;
+  if (!swizzle) return index;
+  const std::uint64_t group = std::uint64_t{geo.columns} * geo.banks;  // words of a row group
+  const std::uint64_t first = index / group * group / words;
+  const std::uint64_t by = first / bricks[0] % bricks[1], bz = first / (bricks[0] * bricks[1]);
+  const std::uint64_t bank = index / geo.columns % geo.banks;
+  const std::uint64_t rotated = (bank + by + bz) % geo.banks;
+  return index + (rotated - bank) * geo.columns;
+}
+
+TEST(AddressMapping, BrickedIndexIsItsDefinition) {
+  const auto geo = rtl::sdram::geometries::mt4lsdt864a();
+  // Brick counts that are powers of two and that are not (the swizzle
+  // divides then), bricks smaller and larger than a row group.
+  for (const WordGrid& g : {WordGrid{64, 32, 32}, WordGrid{40, 24, 17}, WordGrid{33, 7, 9}})
+    for (const std::array<std::uint32_t, 3> brick :
+         {std::array<std::uint32_t, 3>{8, 8, 8}, {4, 2, 1}, {16, 16, 8}})
+      for (const bool swizzle : {false, true}) {
+        const rtl::layout::BrickedMapping m(g, geo, brick, swizzle);
+        for (std::uint32_t z = 0; z < g.nz2; ++z)
+          for (std::uint32_t y = 0; y < g.ny2; ++y)
+            for (std::uint32_t x = 0; x < g.nx; ++x)
+              ASSERT_EQ(m.index({x, y, z}),
+                        bricked_index_by_definition({x, y, z}, g, geo, brick, swizzle))
+                  << x << " " << y << " " << z << " swizzle " << swizzle;
+      }
 }
 
 TEST(AddressMapping, RejectsWhatDoesNotFit) {

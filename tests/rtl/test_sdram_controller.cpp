@@ -11,7 +11,9 @@
 //  (d) refresh over a long run: the k-th REF between k tREFI and
 //      k tREFI + refresh_entry_bound, never overdue;
 //  (e) back-pressure on the return FIFO, draining, and a scheduler that
-//      breaks its contract.
+//      breaks its contract;
+//  (f) the pending-request queue keeps arrival order through any erase, and
+//      the refresh tracker's due and overdue cycles are its owed() counts.
 // docs/sdram.md §5 derives the closed forms and lists the measured figures.
 #include <gtest/gtest.h>
 
@@ -19,6 +21,7 @@
 #include <functional>
 #include <memory>
 #include <random>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -326,6 +329,49 @@ TEST(ControllerFlow, ASchedulerBreakingItsContractIsAnError) {
   }
   EXPECT_THROW(baseline(DimmConfig{}).push(Request{.address = Address{9, 0, 0}}), Error);
   EXPECT_THROW(Controller(DimmConfig{}, nullptr, std::make_unique<sched::EagerRefresh>()), Error);
+}
+
+// PendingQueue against a std::vector doing the same pushes and erases: the
+// same entries in the same order after every step, through the compactions
+// that the queue's advancing start forces.
+TEST(ControllerQueues, PendingQueueKeepsArrivalOrderThroughAnyErase) {
+  std::mt19937 rng(7);
+  for (const std::size_t depth : {std::size_t{1}, std::size_t{2}, std::size_t{8}}) {
+    PendingQueue queue(depth);
+    std::vector<PendingRequest> model;
+    std::uint64_t next_id = 0;
+    for (int step = 0; step < 5000; ++step) {
+      const bool push = model.empty() || (model.size() < depth && rng() % 2 == 0);
+      if (push) {
+        PendingRequest p;
+        p.request.id = next_id++;
+        queue.push_back(p);
+        model.push_back(p);
+      } else {
+        // Mostly the oldest, as a row-hit stream serves them.
+        const std::size_t i = rng() % 3 == 0 ? rng() % model.size() : 0;
+        queue.erase(i);
+        model.erase(model.begin() + static_cast<std::ptrdiff_t>(i));
+      }
+      ASSERT_EQ(queue.size(), model.size());
+      const std::span<const PendingRequest> view = queue.span();
+      for (std::size_t k = 0; k < model.size(); ++k)
+        ASSERT_EQ(view[k].request.id, model[k].request.id) << "step " << step << ", entry " << k;
+    }
+  }
+}
+
+// due() and overdue() compare with cached cycles; the contract states them
+// as owed(now) >= 1 and owed(now) > 1 + postpone limit.
+TEST(ControllerRefresh, DueAndOverdueAreTheOwedCounts) {
+  for (const int limit : {0, 1, 5}) {
+    RefreshTracker t(97, limit);
+    for (Cycle now = -200; now < 3000; ++now) {
+      ASSERT_EQ(t.due(now), t.owed(now) >= 1) << now;
+      ASSERT_EQ(t.overdue(now), t.owed(now) > 1 + limit) << now;
+      if (now > 0 && now % 150 == 0) t.on_refresh(now);
+    }
+  }
 }
 
 }  // namespace
