@@ -84,6 +84,7 @@ class Fifo {
     ++stats_.pushes;
     stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
   }
+
   // push() for a value the caller keeps (a large record copied from the
   // producer's own storage, as the SDRAM completions): copied into its slot
   // as one block, where push()'s parameter by value is copied member by
@@ -91,9 +92,9 @@ class Fifo {
   // written straight into its slot.
   void push_copy(const T& value) {
     if (full()) fail("push while full");
-    if (clock_) account(*clock_);
     slots_[wrap(head_ + count_)] = value;
     ++count_;
+    if (clock_) pushed_at(*clock_);
     ++stats_.pushes;
     stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
   }

@@ -176,7 +176,8 @@ TEST(Fifo, OccupancyStatisticsAreMemberCounters) {
 // told the cycle.
 // The lazy FIFO starts with entries, at a clock other than 0, is read out
 // half-way (sample_until goes on accounting from there), and builds and
-// drops entries in place (emplace, discard) as well as by value.
+// drops entries in place (emplace, discard) and by copy (push_copy) as well
+// as by value.
 TEST(Fifo, SamplingOnChangeEqualsSamplingEveryCycle) {
   Fifo<int> every("every", 5), lazy("lazy", 5);
   for (int v : {7, 8}) {
@@ -194,7 +195,7 @@ TEST(Fifo, SamplingOnChangeEqualsSamplingEveryCycle) {
   for (now = start; now < 20000; ++now) {
     const unsigned moves = (now / 500) % 3 == 2 ? 0 : rnd() % 3;  // idle stretches too
     for (unsigned m = 0; m < moves; ++m) {
-      const unsigned op = rnd() % 5;
+      const unsigned op = rnd() % 6;
       const int v = static_cast<int>(rnd() % 1000);
       if (op == 0 && every.ready()) {
         every.push(v);
@@ -210,6 +211,9 @@ TEST(Fifo, SamplingOnChangeEqualsSamplingEveryCycle) {
         ASSERT_EQ(lazy.front(), every.front());
         every.pop();
         lazy.discard();
+      } else if (op == 5 && every.ready()) {
+        every.push(v);
+        lazy.push_copy(v);
       }
     }
     every.sample();
@@ -237,6 +241,7 @@ TEST(Fifo, OverflowAndUnderflowAreErrorsNamingTheFifo) {
   f.push(2);
   expect_error([&] { f.push(3); }, {"FIFO 'sdram.return'", "push while full"});
   expect_error([&] { f.emplace() = 3; }, {"FIFO 'sdram.return'", "push while full"});
+  expect_error([&] { f.push_copy(3); }, {"FIFO 'sdram.return'", "push while full"});
   EXPECT_EQ(f.size(), 2u);  // the failed pushes changed nothing
   EXPECT_FALSE(f.drained());
   expect_error([&] { f.expect_drained(); }, {"sdram.return", "2 entries at the end"});
