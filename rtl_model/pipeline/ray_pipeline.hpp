@@ -184,7 +184,7 @@ class RayPipeline {
     // flight behind an early-terminated ray have drained.
     while (written_ < order_.size() || !quiet()) {
       const std::uint64_t events_before = events_;
-      const std::uint64_t commands_before = config_.fast_forward ? commands() : 0;
+      ports_acted_ = false;
       const StallStats stalls_before = stats_.stalls;
       now_ = now;
       cycle(now);
@@ -206,7 +206,7 @@ class RayPipeline {
       // (a unit's result becomes ready, a ray's set-up ends, a controller can
       // act); its stalls repeat with it (the FIFOs' occupancies hold).
       Cycle next = now + 1;
-      if (config_.fast_forward && events_ == events_before && commands() == commands_before) {
+      if (config_.fast_forward && events_ == events_before && !ports_acted_) {
         next = std::max(next, next_event(now));
         if (next - last_progress > config_.deadlock_cycles) deadlock(now);
         const Cycle skipped = next - now - 1;
@@ -559,7 +559,11 @@ class RayPipeline {
       port.push(r);
       ++events_;
     }
-    if (now >= port.wake()) port.tick(now);  // (no call while it waits)
+    if (now >= port.wake()) {  // (no call while it waits)
+      const std::uint64_t activity = port.activity();
+      port.tick(now);
+      ports_acted_ |= port.activity() != activity;
+    }
     auto& completions = *completions_[d];
     if (completions.valid()) {
       const std::uint64_t id = completions.front().request.id;
@@ -963,6 +967,9 @@ class RayPipeline {
   static constexpr std::uint64_t kNoEpoch = std::numeric_limits<std::uint64_t>::max();
   std::uint64_t row_epoch_ = 0;  // changes with any of last_row_
   std::uint64_t events_ = 0;
+  // A port issued a command or completed an access in this cycle (its
+  // activity() moved; only tick() moves it).
+  bool ports_acted_ = false;
   std::size_t finished_in_issue_ = 0;  // rays in issue_q_ that have finished (ERT)
   Cycle now_ = 0;  // the cycle being evaluated (the FIFOs' statistics clock)
   ref::QuantImage* image_ = nullptr;
