@@ -97,10 +97,16 @@ void check_neighbourhoods(std::array<int, 3> dims) {
   EXPECT_EQ(layout.grid().nz2, static_cast<std::uint32_t>((dims[2] + 1) / 2));
 }
 
+// Both ways Vizard2Memory reads the host's words: the packed words (fields of
+// at most 16 bits: vizard2, balanced) and the eight bank arrays (precise).
 TEST(Vizard2Layout, EveryNeighbourhoodIsOneWordPerDimm) {
+  static_assert(hls::host::EngineBanks<ProfileTraits<kVizard2>>::kPacked &&
+                hls::host::EngineBanks<ProfileTraits<kBalanced>>::kPacked &&
+                !hls::host::EngineBanks<ProfileTraits<kPrecise>>::kPacked);
   for (const auto& dims : std::vector<std::array<int, 3>>{
            {5, 4, 3}, {6, 7, 5}, {2, 2, 2}, {1, 3, 2}, {4, 1, 1}, {9, 6, 8}}) {
     check_neighbourhoods<kVizard2>(dims);
+    check_neighbourhoods<kBalanced>(dims);
     check_neighbourhoods<kPrecise>(dims);
   }
 }
