@@ -76,6 +76,18 @@ std::vector<CardItem> issue_items(int index_bits, int tag_bits, const Part& part
   return v;
 }
 
+// One copy of a channel's brick cache: its lines and its tags, the store a
+// read port per look-up would replicate (ported_card_total).
+std::vector<CardItem> cache_store_items(const rtl::pipeline::BurstCardConfig& card, int tag_bits,
+                                        const Part& part) {
+  const int mshr_bits = bits_for(card.mshrs - 1);
+  const int lines = static_cast<int>(card.cache_lines);
+  return {priced({OpKind::Ram, "brick cache lines (64-byte bursts)", 1, lines, kLineBits}, part),
+          priced({OpKind::Ram, "brick cache tags (brick, valid, pending, miss register)", 1, lines,
+                  tag_bits + 2 + mshr_bits},
+                 part)};
+}
+
 // Per channel: the brick cache, the miss registers and queue, the two
 // crossings (burst_channel.hpp).
 std::vector<CardItem> channel_items(const rtl::pipeline::BurstCardConfig& card, int address_bits,
@@ -83,13 +95,7 @@ std::vector<CardItem> channel_items(const rtl::pipeline::BurstCardConfig& card, 
   const int line_bits = std::countr_zero(card.cache_lines);
   const int mshr_bits = bits_for(card.mshrs - 1);
   const int pointer_bits = bits_for(card.crossing_depth - 1) + 1;  // Gray code, wrap bit
-  const int lines = static_cast<int>(card.cache_lines);
-  std::vector<CardItem> v;
-  v.push_back(priced({OpKind::Ram, "brick cache lines (64-byte bursts)", 1, lines, kLineBits},
-                     part));
-  v.push_back(priced({OpKind::Ram, "brick cache tags (brick, valid, pending, miss register)", 1,
-                      lines, tag_bits + 2 + mshr_bits},
-                     part));
+  std::vector<CardItem> v = cache_store_items(card, tag_bits, part);
   v.push_back(priced({OpKind::Ram, "miss registers (burst address, line)", 1, card.mshrs,
                       address_bits + line_bits},
                      part));
@@ -119,6 +125,7 @@ bool fits(const Resources& r, const Part& part) { return binding_share(r, part) 
 }  // namespace card_pricing
 
 using card_pricing::burst_address_bits;
+using card_pricing::cache_store_items;
 using card_pricing::channel_items;
 using card_pricing::ddr4_controller;
 using card_pricing::fits;
@@ -169,9 +176,7 @@ CardPrice price_card(const ref::Elaboration& e, const rtl::pipeline::PipelineCon
   for (const CardItem& it : c.issue) c.per_pipeline += it.res;
   c.channel = channel_items(card, address_bits, tag_bits, part);
   for (const CardItem& it : c.channel) c.per_channel += it.res;
-  // The first two items are the lines and the tags (channel_items).
-  c.cache_store = c.channel[0].res;
-  c.cache_store += c.channel[1].res;
+  for (const CardItem& it : cache_store_items(card, tag_bits, part)) c.cache_store += it.res;
   c.controller = ddr4_controller();
   c.controller_source = kControllerSource;
   c.per_channel += c.controller;
