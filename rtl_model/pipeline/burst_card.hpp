@@ -74,6 +74,7 @@
 #include "rtl_model/pipeline/burst_config.hpp"
 #include "rtl_model/pipeline/config.hpp"
 #include "rtl_model/pipeline/ray_pipeline.hpp"
+#include "rtl_model/pipeline/sample_datapath.hpp"
 #include "rtl_model/pipeline/stats.hpp"
 #include "rtl_model/sim/fifo.hpp"
 
@@ -403,21 +404,15 @@ class BurstCard {
         ++s.composited;
         ++stats_.samples;
         bool done = s.issue_done && s.composited == s.issued;
-        if (mip_) {
-          hls::mip_update<P>(s.peak, e.value);
-        } else if (e.alpha != 0) {
-          hls::composite<P>(s.acc, e.c, e.alpha);
-          if (hls::ert_reached<P>(s.acc, f_.compositor)) {
-            end_early(s, e);
-            done = true;
-          }
+        if (composite_sample<P>(f_, mip_, s.acc, s.peak, e.value, e.c, e.alpha)) {
+          count_early_end(stats_, s.n, s.next, s.issued, e.pos, e.k);
+          done = true;
         }
         p.datapath.pop_front();
         ++events_;
         --s.outstanding;
         if (done) {
-          const hls::Accumulator<P> a = mip_ ? hls::mip_pixel<P>(s.peak, f_.compositor) : s.acc;
-          p.out.push_back(Pixel{s.x, s.y, hls::output<P>(a)});
+          p.out.push_back(Pixel{s.x, s.y, hls::output<P>(ray_result<P>(f_, mip_, s.acc, s.peak))});
           pushed = true;
           s.finished = true;
         }
@@ -485,21 +480,11 @@ class BurstCard {
     out.value = sample.value;
     out.alpha = 0;
     if (!mip_) {
-      hls::Sample<P> lit = sample;
-      hls::ClassEntry<P> c = hls::classify_entry<P>(f_.class_table, f_.preint, e.pos == 0,
-                                                    s.front.value, sample.value, hls::Has<true>{});
-      // The shading stage lights the segment's front gradient (§4a).
-      if (f_.preint.enabled)
-        for (int a = 0; a < 3; ++a) lit.g[a] = s.front.g[a];
-      s.front = sample;
-      c.alpha = hls::segment_opacity<P>(f_.segments, hls::class_address<P>(sample.value), c.alpha,
-                                        hls::sample_weight<P>(s.weights, e.pos, s.n));
+      hls::Sample<P> lit;
+      const hls::ClassEntry<P> c =
+          classify_sample<P>(f_, sample, e.pos, s.n, s.weights, s.front, lit);
       out.alpha = c.alpha;
-      if (c.alpha != 0) {
-        hls::Reflect<P> r{0, 0};
-        if (shaded_) r = hls::reflect<P>(f_.reflectance, f_.reflectance_regs, lit.g);
-        out.c = hls::shade<P>(c, r, shaded_);
-      }
+      if (c.alpha != 0) out.c = shade_sample<P>(f_, c, lit, shaded_);
     }
     p.datapath.push_back(out);
     advance(p);
@@ -653,11 +638,6 @@ class BurstCard {
     ++events_;
     if (s.next == s.n) end_issue(p, i, s);
     return true;
-  }
-
-  void end_early(const Slot& s, const Staged& e) {
-    if (e.pos + 1 < s.n) ++stats_.rays_ert;
-    stats_.samples_skipped_discarded += (s.next - 1 - e.pos) - (s.issued - 1 - e.k);
   }
 
   // Ray i (the issue queue's front) has no sample left to issue.

@@ -65,6 +65,7 @@
 #include "rtl_model/pipeline/fast_in_order_port.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
 #include "rtl_model/pipeline/reference_port.hpp"
+#include "rtl_model/pipeline/sample_datapath.hpp"
 #include "rtl_model/pipeline/stats.hpp"
 #include "rtl_model/sdram/controller.hpp"
 #include "rtl_model/sim/fifo.hpp"
@@ -408,21 +409,15 @@ class RayPipeline {
         ++s.composited;
         ++stats_.samples;
         bool done = s.issue_done && s.composited == s.issued;
-        if (mip_) {
-          hls::mip_update<P>(s.peak, e.value);
-        } else if (e.alpha != 0) {
-          hls::composite<P>(s.acc, e.c, e.alpha);
-          if (hls::ert_reached<P>(s.acc, f_.compositor)) {
-            end_early(s, e);
-            done = true;
-          }
+        if (composite_sample<P>(f_, mip_, s.acc, s.peak, e.value, e.c, e.alpha)) {
+          count_early_end(stats_, s.n, s.next, s.issued, e.pos, e.k);
+          done = true;
         }
         shade_.discard();
         ++events_;
         --s.outstanding;
         if (done) {
-          const hls::Accumulator<P> a = mip_ ? hls::mip_pixel<P>(s.peak, f_.compositor) : s.acc;
-          out_.push(Pixel{s.x, s.y, hls::output<P>(a)});
+          out_.push(Pixel{s.x, s.y, hls::output<P>(ray_result<P>(f_, mip_, s.acc, s.peak))});
           pushed = true;
           s.finished = true;
           if (s.in_issue) ++finished_in_issue_;
@@ -460,9 +455,7 @@ class RayPipeline {
     out.value = in.s.value;
     out.alpha = mip_ ? typename C::alpha_t(0) : in.e.alpha;
     if (out.alpha != 0) {
-      hls::Reflect<P> r{0, 0};
-      if (shaded_) r = hls::reflect<P>(f_.reflectance, f_.reflectance_regs, in.s.g);
-      out.c = hls::shade<P>(in.e, r, shaded_);
+      out.c = shade_sample<P>(f_, in.e, in.s, shaded_);
     } else {
       out.c = hls::ShadedColor<P>{};  // (not composited)
     }
@@ -479,21 +472,12 @@ class RayPipeline {
     out.slot = in.slot;
     out.k = in.k;
     out.pos = in.pos;
-    out.s = in.s;
     if (!mip_) {
+      // §4a: a ray's samples reach this stage in order.
       Slot& s = slots_[static_cast<std::size_t>(in.slot)];
-      // §4a: a ray's samples reach this stage in order; its first (pos 0)
-      // ends no segment.
-      out.e = hls::classify_entry<P>(f_.class_table, f_.preint, in.pos == 0, s.front.value,
-                                     in.s.value, hls::Has<true>{});
-      // The shading stage lights the segment's front gradient (§4a).
-      if (f_.preint.enabled)
-        for (int a = 0; a < 3; ++a) out.s.g[a] = s.front.g[a];
-      s.front = in.s;
-      out.e.alpha = hls::segment_opacity<P>(f_.segments, hls::class_address<P>(in.s.value),
-                                            out.e.alpha,
-                                            hls::sample_weight<P>(s.weights, in.pos, s.n));
+      out.e = classify_sample<P>(f_, in.s, in.pos, s.n, s.weights, s.front, out.s);
     } else {
+      out.s = in.s;
       out.e = hls::ClassEntry<P>{};  // (MIP composites the value)
     }
     interp_.discard();
@@ -754,15 +738,6 @@ class RayPipeline {
     ++events_;
     if (s.next == s.n) end_issue(j, i, s);
     return true;
-  }
-
-  // Early ray termination at sample e (ref::FrameStats): the ray ended early
-  // unless e is its sample n-1. The samples the issue stage leapt over beyond
-  // e (positions e.pos+1 .. next-1 not issued) count as discarded skips, as
-  // the issued ones beyond e count as discarded samples.
-  void end_early(const Slot& s, const Shaded& e) {
-    if (e.pos + 1 < s.n) ++stats_.rays_ert;
-    stats_.samples_skipped_discarded += (s.next - 1 - e.pos) - (s.issued - 1 - e.k);
   }
 
   // Ray `i`, at place `j` of the issue queue, has no sample left to issue. If
