@@ -19,7 +19,8 @@
 // classify_entry, segment_opacity, reflect, shade, composite, ert_reached,
 // mip_update / mip_pixel, output, and the space-leaping unit's
 // sample_block_empty / leap_run), so the image equals the hls engine's bit
-// for bit. The corners come from the bursts: a hit copies them out of the
+// for bit; the units behind interpolation are the very functions RayPipeline
+// runs (sample_datapath.hpp). The corners come from the bursts: a hit copies them out of the
 // cache line, a miss from the returning burst, whose voxels are the memory
 // image's at the burst's address (brick_image.hpp).
 //
