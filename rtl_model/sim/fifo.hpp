@@ -76,28 +76,15 @@ class Fifo {
   bool ready() const { return !full(); }   // the producer may push
   bool valid() const { return !empty(); }  // the consumer may pop
 
-  void push(T value) {
-    if (full()) fail("push while full");
-    slots_[wrap(head_ + count_)] = std::move(value);
-    ++count_;
-    if (clock_) pushed_at(*clock_);
-    ++stats_.pushes;
-    stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
-  }
+  // Every push is emplace() with the entry assigned.
+  void push(T value) { emplace() = std::move(value); }
 
   // push() for a value the caller keeps (a large record copied from the
   // producer's own storage, as the SDRAM completions): copied into its slot
   // as one block, where push()'s parameter by value is copied member by
   // member. push() stays by value: a value built for the FIFO is then
   // written straight into its slot.
-  void push_copy(const T& value) {
-    if (full()) fail("push while full");
-    slots_[wrap(head_ + count_)] = value;
-    ++count_;
-    if (clock_) pushed_at(*clock_);
-    ++stats_.pushes;
-    stats_.max_occupancy = std::max(stats_.max_occupancy, count_);
-  }
+  void push_copy(const T& value) { emplace() = value; }
 
   const T& front() const {
     if (empty()) fail("front() while empty");
@@ -106,12 +93,8 @@ class Fifo {
 
   T pop() {
     if (empty()) fail("pop while empty");
-    if (clock_) popping_at(*clock_);
     T value = std::move(slots_[head_]);
-    head_ = wrap(head_ + 1);
-    --count_;
-    if (clock_ && count_ == 0) empty_since_ = *clock_;
-    ++stats_.pops;
+    discard();
     return value;
   }
 
@@ -120,11 +103,8 @@ class Fifo {
   // simulated clock).
   void discard() {
     if (empty()) fail("pop while empty");
-    if (clock_) popping_at(*clock_);
     head_ = wrap(head_ + 1);
-    --count_;
-    if (clock_ && count_ == 0) empty_since_ = *clock_;
-    ++stats_.pops;
+    count_pop();
   }
 
   // push() of an entry built in place: returns the new last entry, which
@@ -151,13 +131,10 @@ class Fifo {
   // place, so the order of the rest is kept (take(0) == pop()).
   T take(std::size_t i) {
     if (i >= count_) fail("take() past the last entry");
-    if (clock_) popping_at(*clock_);
     T value = std::move(slots_[wrap(head_ + i)]);
     for (std::size_t k = i; k + 1 < count_; ++k)
       slots_[wrap(head_ + k)] = std::move(slots_[wrap(head_ + k + 1)]);
-    --count_;
-    if (clock_ && count_ == 0) empty_since_ = *clock_;
-    ++stats_.pops;
+    count_pop();
     return value;
   }
 
@@ -226,10 +203,17 @@ class Fifo {
     if (count_ == 1) empty_ += static_cast<std::uint64_t>(t - empty_since_);
     if (count_ == depth_) full_since_ = t;
   }
-  // Before a pop at clock t (the caller sets empty_since_ if it empties).
-  void popping_at(std::int64_t t) {
-    area_ += t;
-    if (count_ == depth_) full_ += static_cast<std::uint64_t>(t - full_since_);
+  // One entry fewer (every pop): the count, and its statistics.
+  void count_pop() {
+    if (clock_) {
+      const std::int64_t t = *clock_;
+      area_ += t;
+      if (count_ == depth_) full_ += static_cast<std::uint64_t>(t - full_since_);
+      if (--count_ == 0) empty_since_ = t;
+    } else {
+      --count_;
+    }
+    ++stats_.pops;
   }
 
   [[noreturn]] void fail(std::string_view what) const {
