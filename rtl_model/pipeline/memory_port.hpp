@@ -54,9 +54,12 @@ class MemoryPort {
   virtual std::size_t in_flight() const = 0;
   virtual bool idle() const = 0;
   virtual void expect_drained() const = 0;
-  // ControllerStats::cycles and the completions FIFO's samples count the
-  // ticks a port ran, which differ between implementations; everything else
-  // is equal.
+  // ControllerStats::cycles counts the ticks a port ran, which differ
+  // between implementations; everything else is equal. The pipeline reports
+  // the frame's cycles instead (the card clocks its controllers in every
+  // cycle) and samples the completions FIFO on its own clock
+  // (sim::Fifo::sample_on_change), so its statistics do not depend on the
+  // port.
   virtual const sdram::ControllerStats& controller_stats() const = 0;
   virtual const sdram::DimmStats& dimm_stats() const = 0;
 

@@ -801,6 +801,7 @@ class RayPipeline {
     f(miss_);
     f(leapt_);
     for (auto& rq : req_) f(rq);
+    for (auto* c : completions_) f(*c);  // the ports' (pushed in their ticks)
     f(interp_);
     f(class_);
     f(shade_);
@@ -898,6 +899,11 @@ class RayPipeline {
   void collect() {
     for (std::size_t d = 0; d < ports_.size(); ++d) {
       stats_.dimms[d].controller = ports_[d]->controller_stats();
+      // The card clocks its controllers in every cycle of the frame. The
+      // ports' own count is of the ticks the simulation ran (it skips the
+      // cycles in which a controller cannot act, and each port skips
+      // others), not a property of the card.
+      stats_.dimms[d].controller.cycles = stats_.cycles;
       stats_.dimms[d].dimm = ports_[d]->dimm_stats();
     }
     auto add = [this](const auto& fifo) {

@@ -7,8 +7,9 @@
 // slot freed by the consumer's pop while every slot was taken (the next
 // cycle). Every policy gives such a hint (sdram/scheduler.hpp), so every
 // policy runs event-driven. Skipping changes nothing but the controller's
-// own tick counters (ControllerStats::cycles, the completions FIFO's sampled
-// cycles); tests/rtl compare it completion by completion with the controller
+// own tick counters (ControllerStats::cycles, and the completions FIFO's
+// sampled cycles where no owner's clock samples it; the pipeline reports
+// neither); tests/rtl compare it completion by completion with the controller
 // ticked every cycle, and cycles, statistics and image on whole frames.
 #pragma once
 

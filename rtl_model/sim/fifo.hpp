@@ -17,7 +17,7 @@
 //     the same statistics as sample() at the end of every clock before
 //     `end`, accounted only when the occupancy changes (a model with many
 //     FIFOs, most of them unchanged in most clocks, pays per change instead
-//     of per clock and FIFO).
+//     of per clock and FIFO). sample() then does nothing.
 //   - drained() / expect_drained(): data left in a FIFO at the end of a run is
 //     a lost transaction; expect_drained() throws naming the FIFO.
 #pragma once
@@ -139,7 +139,11 @@ class Fifo {
   }
 
   // One clock of the FIFO's domain: accumulate the occupancy statistics.
+  // Nothing while the FIFO samples on change: the owner's clock accounts
+  // every cycle then, and a producer that also calls sample() (a memory
+  // port, on the cycles it happens to run) must not count its own again.
   void sample() {
+    if (clock_) return;
     ++stats_.sampled_cycles;
     stats_.occupancy_sum += count_;
     if (full()) ++stats_.full_cycles;

@@ -250,72 +250,86 @@ TEST(RtlEngine, SameCyclesAndBitsForAnyHostThreadCount) {
 // event-driven memory ports (the in-order port; every policy's controller
 // ticked at its next events) are simulation speed-ups only: against the
 // reference controller ticked every cycle, the same cycles, commands, row
-// outcomes, latencies, stalls and image, for every scheduling policy.
+// outcomes, latencies, stalls, FIFO occupancies and image, for every
+// scheduling policy, open page and auto precharge. The controllers' cycles
+// are the frame's (the card clocks them in every cycle), whichever ticks
+// the simulation ran.
 TEST(RtlEngine, FastSimulationChangesNothing) {
   for (const char* policy : {"in-order", "fr-fcfs", "lookahead"})
-  for (const char* mode : {"shaded", "mip"}) {
-    const RtlFrame f = make_rtl_frame("shepp-logan", 24, 24,
-                                      {"precision.profile=vizard2", std::string("render.mode=") + mode,
-                                       "render.ert_threshold=0.5"});
-    rtl::RtlConfig slow = rtl::vizard2_baseline();
-    slow.scheduler = policy;
-    slow.pipeline.scheduler_params.starvation_limit = 8;
-    slow.pipeline.fast_forward = false;
-    slow.pipeline.memory_model = rtl::pipeline::MemoryModel::kReference;
-    for (int slots : {16, 2}) {
-      slow.pipeline.ray_slots = slots;
-      rtl::RtlConfig fast = slow;
-      fast.pipeline.fast_forward = true;
-      fast.pipeline.memory_model = rtl::pipeline::MemoryModel::kAuto;
-      const rtl::RtlResult a = rtl::rtl_render(f.setup, f.memory, slow);
-      const rtl::RtlResult b = rtl::rtl_render(f.setup, f.memory, fast);
-      SCOPED_TRACE(::testing::Message() << policy << ", " << mode << ", " << slots << " ray slots");
-      EXPECT_EQ(a.image.pixels, b.image.pixels);
-      EXPECT_EQ(a.stats.cycles, b.stats.cycles);
-      EXPECT_EQ(a.stats.samples_issued, b.stats.samples_issued);
-      EXPECT_EQ(a.stats.samples_discarded, b.stats.samples_discarded);
-      for (std::size_t d = 0; d < 4; ++d) {
-        const auto& x = a.stats.dimms[d];
-        const auto& y = b.stats.dimms[d];
-        EXPECT_EQ(x.controller.row_hits, y.controller.row_hits);
-        EXPECT_EQ(x.controller.row_conflicts, y.controller.row_conflicts);
-        EXPECT_EQ(x.controller.row_misses, y.controller.row_misses);
-        EXPECT_EQ(x.controller.command_cycles, y.controller.command_cycles);
-        EXPECT_EQ(x.controller.refresh_cycles, y.controller.refresh_cycles);
-        EXPECT_EQ(x.controller.latency_sum, y.controller.latency_sum);
-        EXPECT_EQ(x.controller.latency_max, y.controller.latency_max);
-        EXPECT_EQ(x.controller.bytes, y.controller.bytes);
-        EXPECT_EQ(x.dimm.refreshes, y.dimm.refreshes);
-        EXPECT_EQ(x.dimm.commands, y.dimm.commands);
-        EXPECT_EQ(x.dimm.precharge_alls, y.dimm.precharge_alls);
-        EXPECT_EQ(x.dimm.data_bus_busy_cycles, y.dimm.data_bus_busy_cycles);
-        for (std::size_t k = 0; k < x.dimm.banks.size(); ++k) {
-          EXPECT_EQ(x.dimm.banks[k].activates, y.dimm.banks[k].activates);
-          EXPECT_EQ(x.dimm.banks[k].precharges, y.dimm.banks[k].precharges);
-          EXPECT_EQ(x.dimm.banks[k].open_cycles, y.dimm.banks[k].open_cycles);
-          EXPECT_EQ(x.dimm.banks[k].reads, y.dimm.banks[k].reads);
+    for (bool auto_precharge : {false, true})
+      for (const char* mode : {"shaded", "mip"}) {
+        const RtlFrame f =
+            make_rtl_frame("shepp-logan", 24, 24,
+                           {"precision.profile=vizard2", std::string("render.mode=") + mode,
+                            "render.ert_threshold=0.5"});
+        rtl::RtlConfig slow = rtl::vizard2_baseline();
+        slow.scheduler = policy;
+        slow.pipeline.scheduler_params.starvation_limit = 8;
+        slow.pipeline.fast_forward = false;
+        slow.pipeline.memory_model = rtl::pipeline::MemoryModel::kReference;
+        slow.pipeline.controller.auto_precharge = auto_precharge;
+        for (int slots : {16, 2}) {
+          slow.pipeline.ray_slots = slots;
+          rtl::RtlConfig fast = slow;
+          fast.pipeline.fast_forward = true;
+          fast.pipeline.memory_model = rtl::pipeline::MemoryModel::kAuto;
+          const rtl::RtlResult a = rtl::rtl_render(f.setup, f.memory, slow);
+          const rtl::RtlResult b = rtl::rtl_render(f.setup, f.memory, fast);
+          SCOPED_TRACE(::testing::Message()
+                       << policy << (auto_precharge ? ", auto precharge, " : ", ") << mode << ", "
+                       << slots << " ray slots");
+          EXPECT_EQ(a.image.pixels, b.image.pixels);
+          EXPECT_EQ(a.stats.cycles, b.stats.cycles);
+          EXPECT_EQ(a.stats.samples_issued, b.stats.samples_issued);
+          EXPECT_EQ(a.stats.samples_discarded, b.stats.samples_discarded);
+          for (std::size_t d = 0; d < 4; ++d) {
+            const auto& x = a.stats.dimms[d];
+            const auto& y = b.stats.dimms[d];
+            EXPECT_EQ(x.controller.cycles, a.stats.cycles);
+            EXPECT_EQ(y.controller.cycles, b.stats.cycles);
+            EXPECT_EQ(x.controller.auto_precharges, y.controller.auto_precharges);
+            EXPECT_EQ(x.controller.row_hits, y.controller.row_hits);
+            EXPECT_EQ(x.controller.row_conflicts, y.controller.row_conflicts);
+            EXPECT_EQ(x.controller.row_misses, y.controller.row_misses);
+            EXPECT_EQ(x.controller.command_cycles, y.controller.command_cycles);
+            EXPECT_EQ(x.controller.refresh_cycles, y.controller.refresh_cycles);
+            EXPECT_EQ(x.controller.latency_sum, y.controller.latency_sum);
+            EXPECT_EQ(x.controller.latency_max, y.controller.latency_max);
+            EXPECT_EQ(x.controller.bytes, y.controller.bytes);
+            EXPECT_EQ(x.dimm.refreshes, y.dimm.refreshes);
+            EXPECT_EQ(x.dimm.commands, y.dimm.commands);
+            EXPECT_EQ(x.dimm.precharge_alls, y.dimm.precharge_alls);
+            EXPECT_EQ(x.dimm.data_bus_busy_cycles, y.dimm.data_bus_busy_cycles);
+            for (std::size_t k = 0; k < x.dimm.banks.size(); ++k) {
+              EXPECT_EQ(x.dimm.banks[k].activates, y.dimm.banks[k].activates);
+              EXPECT_EQ(x.dimm.banks[k].precharges, y.dimm.banks[k].precharges);
+              EXPECT_EQ(x.dimm.banks[k].open_cycles, y.dimm.banks[k].open_cycles);
+              EXPECT_EQ(x.dimm.banks[k].reads, y.dimm.banks[k].reads);
+            }
+          }
+          const auto& p = a.stats.stalls;
+          const auto& q = b.stats.stalls;
+          EXPECT_EQ(p.issue_no_ray, q.issue_no_ray);
+          EXPECT_EQ(p.issue_buffer_full, q.issue_buffer_full);
+          EXPECT_EQ(p.issue_memory_full, q.issue_memory_full);
+          EXPECT_EQ(p.issue_idle, q.issue_idle);
+          EXPECT_EQ(p.interp_wait_memory, q.interp_wait_memory);
+          EXPECT_EQ(p.interp_blocked, q.interp_blocked);
+          EXPECT_EQ(p.setup_no_slot, q.setup_no_slot);
+          EXPECT_EQ(p.composite_blocked, q.composite_blocked);
+          ASSERT_EQ(a.stats.fifos.size(), b.stats.fifos.size());
+          for (std::size_t i = 0; i < a.stats.fifos.size(); ++i) {
+            const auto& u = a.stats.fifos[i];
+            const auto& v = b.stats.fifos[i];
+            EXPECT_EQ(u.stats.occupancy_sum, v.stats.occupancy_sum) << u.name;
+            EXPECT_EQ(u.stats.sampled_cycles, v.stats.sampled_cycles) << u.name;
+            EXPECT_EQ(u.stats.sampled_cycles, static_cast<std::uint64_t>(a.stats.cycles)) << u.name;
+            EXPECT_EQ(u.stats.full_cycles, v.stats.full_cycles) << u.name;
+            EXPECT_EQ(u.stats.empty_cycles, v.stats.empty_cycles) << u.name;
+            EXPECT_EQ(u.stats.max_occupancy, v.stats.max_occupancy) << u.name;
+          }
         }
       }
-      const auto& p = a.stats.stalls;
-      const auto& q = b.stats.stalls;
-      EXPECT_EQ(p.issue_no_ray, q.issue_no_ray);
-      EXPECT_EQ(p.issue_buffer_full, q.issue_buffer_full);
-      EXPECT_EQ(p.issue_memory_full, q.issue_memory_full);
-      EXPECT_EQ(p.issue_idle, q.issue_idle);
-      EXPECT_EQ(p.interp_wait_memory, q.interp_wait_memory);
-      EXPECT_EQ(p.interp_blocked, q.interp_blocked);
-      EXPECT_EQ(p.setup_no_slot, q.setup_no_slot);
-      EXPECT_EQ(p.composite_blocked, q.composite_blocked);
-      ASSERT_EQ(a.stats.fifos.size(), b.stats.fifos.size());
-      for (std::size_t i = 0; i < a.stats.fifos.size(); ++i) {
-        if (a.stats.fifos[i].name == "sdram.completions") continue;  // sampled per controller tick
-        EXPECT_EQ(a.stats.fifos[i].stats.occupancy_sum, b.stats.fifos[i].stats.occupancy_sum)
-            << a.stats.fifos[i].name;
-        EXPECT_EQ(a.stats.fifos[i].stats.sampled_cycles, b.stats.fifos[i].stats.sampled_cycles)
-            << a.stats.fifos[i].name;
-      }
-    }
-  }
 }
 
 TEST(RtlEngine, RejectsWhatItCannotRun) {
