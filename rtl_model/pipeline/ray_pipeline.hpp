@@ -46,6 +46,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -186,7 +187,7 @@ class RayPipeline {
     while (written_ < order_.size() || !quiet()) {
       const std::uint64_t events_before = events_;
       ports_acted_ = false;
-      const StallStats stalls_before = stats_.stalls;
+      stalled_count_ = 0;
       now_ = now;
       cycle(now);
       if (trace_) trace_fifos(now);
@@ -211,7 +212,7 @@ class RayPipeline {
         next = std::max(next, next_event(now));
         if (next - last_progress > config_.deadlock_cycles) deadlock(now);
         const Cycle skipped = next - now - 1;
-        if (skipped > 0) repeat_stalls(stalls_before, skipped);
+        if (skipped > 0) repeat_stalls(skipped);
       }
       now = next;
     }
@@ -357,17 +358,17 @@ class RayPipeline {
     return t;
   }
 
-  void repeat_stalls(const StallStats& before, Cycle times) {
-    StallStats& s = stats_.stalls;
-    auto rep = [times](Cycle& now_value, Cycle prev) { now_value += (now_value - prev) * times; };
-    rep(s.issue_no_ray, before.issue_no_ray);
-    rep(s.issue_buffer_full, before.issue_buffer_full);
-    rep(s.issue_memory_full, before.issue_memory_full);
-    rep(s.issue_idle, before.issue_idle);
-    rep(s.interp_wait_memory, before.interp_wait_memory);
-    rep(s.interp_blocked, before.interp_blocked);
-    rep(s.setup_no_slot, before.setup_no_slot);
-    rep(s.composite_blocked, before.composite_blocked);
+  // A unit stalled in this cycle: its counter, and which counters a
+  // fast-forward repeats (each counts at most once per cycle; a list of the
+  // few that did, instead of a copy of every counter per cycle).
+  void stall(Cycle& counter) {
+    assert(stalled_count_ < kStallingUnits);
+    ++counter;
+    stalled_[stalled_count_++] = &counter;
+  }
+
+  void repeat_stalls(Cycle times) {
+    for (std::size_t k = 0; k < stalled_count_; ++k) *stalled_[k] += times;
   }
 
   // ---- One clock ------------------------------------------------------------------------------
@@ -403,7 +404,7 @@ class RayPipeline {
         ++events_;
         drop(slot);
       } else if (!out_.ready()) {
-        ++stats_.stalls.composite_blocked;
+        stall(stats_.stalls.composite_blocked);
       } else {
         if (e.k != s.composited) order_error("compositor", slot, e.k, s.composited);
         ++s.composited;
@@ -488,7 +489,7 @@ class RayPipeline {
     if (buf_count_ == 0) return;
     Buffered& b = buf_[buf_head_];
     if (b.arrived != (1u << layout::kDimms) - 1u) {
-      ++stats_.stalls.interp_wait_memory;
+      stall(stats_.stalls.interp_wait_memory);
       return;
     }
     if (slots_[static_cast<std::size_t>(b.slot)].finished) {  // after early ray termination
@@ -498,7 +499,7 @@ class RayPipeline {
       return;
     }
     if (!interp_.ready()) {
-      ++stats_.stalls.interp_blocked;
+      stall(stats_.stalls.interp_blocked);
       return;
     }
     const layout::Dimm4Banks<P> view{b.word.data(), b.access.parity};
@@ -563,12 +564,12 @@ class RayPipeline {
   void issue(Cycle now) {
     retire_finished_rays();
     if (!issue_q_.valid()) {
-      ++(next_pixel_ == order_.size() ? stats_.stalls.issue_idle : stats_.stalls.issue_no_ray);
+      stall(next_pixel_ == order_.size() ? stats_.stalls.issue_idle : stats_.stalls.issue_no_ray);
       return;
     }
     const Pick pick = pick_ray(now);
     if (pick.place == kNone) {
-      ++stats_.stalls.issue_no_ray;
+      stall(stats_.stalls.issue_no_ray);
       return;
     }
     const std::size_t j = pick.place;
@@ -576,12 +577,12 @@ class RayPipeline {
     Slot& s = slots_[static_cast<std::size_t>(i)];
     if (leap_ && try_leap(now, j, s)) return;
     if (buf_count_ == buf_size_) {
-      ++stats_.stalls.issue_buffer_full;
+      stall(stats_.stalls.issue_buffer_full);
       return;
     }
     for (const auto& rq : req_)
       if (!rq.ready()) {
-        ++stats_.stalls.issue_memory_full;
+        stall(stats_.stalls.issue_memory_full);
         return;
       }
     if (config_.issue == IssuePolicy::kRowHit) count_bypass(j != pick.oldest);
@@ -764,7 +765,7 @@ class RayPipeline {
     }
     const hls::RaySetup<P>& ray = setup_ray_;
     if (ray.hit && !free_.valid()) {
-      ++stats_.stalls.setup_no_slot;
+      stall(stats_.stalls.setup_no_slot);
       return;
     }
     if (!ray.hit && !miss_.ready()) return;
@@ -951,6 +952,10 @@ class RayPipeline {
   // A port issued a command or completed an access in this cycle (its
   // activity() moved; only tick() moves it).
   bool ports_acted_ = false;
+  // The stall counters this cycle raised (stall()): at most one per unit.
+  static constexpr std::size_t kStallingUnits = 4;  // issue, interpolation, setup, compositor
+  std::array<Cycle*, kStallingUnits> stalled_{};
+  std::size_t stalled_count_ = 0;
   std::size_t finished_in_issue_ = 0;  // rays in issue_q_ that have finished (ERT)
   Cycle now_ = 0;  // the cycle being evaluated (the FIFOs' statistics clock)
   ref::QuantImage* image_ = nullptr;
