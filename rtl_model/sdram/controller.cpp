@@ -195,7 +195,7 @@ void Controller::retire(Cycle now) {
   while (!in_flight_.empty() && in_flight_.front().data.last <= now) {
     const Completion& c = in_flight_.front();
     const Cycle latency = c.latency();
-    completions_.push(c);  // a slot was reserved when the column command was issued
+    completions_.push_copy(c);  // (as one block) a slot was reserved at the column command
     in_flight_.pop();
     ++stats_.completed;
     stats_.bytes += burst_bytes;
