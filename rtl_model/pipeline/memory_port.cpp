@@ -1,6 +1,7 @@
 #include "rtl_model/pipeline/memory_port.hpp"
 
 #include "rtl_model/pipeline/fast_in_order_port.hpp"
+#include "rtl_model/pipeline/fast_lookahead_port.hpp"
 #include "rtl_model/pipeline/reference_port.hpp"
 #include "rtl_model/sched/registry.hpp"
 
@@ -20,6 +21,11 @@ std::unique_ptr<MemoryPort> make_memory_port(MemoryModel model, const std::strin
       scheduler == "in-order" && refresh == "eager" && !controller.auto_precharge;
   if (model == MemoryModel::kAuto && in_order_eager)
     return std::make_unique<FastInOrderPort>(dimm, controller);
+  // The look-ahead port: open page or auto precharge.
+  const bool lookahead_eager = scheduler == "lookahead" && refresh == "eager" &&
+                               dimm.geometry.banks <= FastLookAheadPort::kMaxBanks;
+  if (model == MemoryModel::kAuto && lookahead_eager)
+    return std::make_unique<FastLookAheadPort>(dimm, controller, params.reorder_window);
   return std::make_unique<ReferencePort>(
       std::make_unique<sdram::Controller>(dimm, std::move(s), std::move(r), controller),
       skip_idle_ticks);

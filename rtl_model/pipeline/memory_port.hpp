@@ -7,9 +7,13 @@
 //   FastInOrderPort  the in-order open-page scheduler with eager refresh,
 //                    event-driven: the same decisions, commands, cycles and
 //                    statistics as the reference with those two policies,
-//                    ten times faster (fast_in_order_port.hpp). tests/rtl
-//                    compare the two command by command on random request
-//                    streams and statistic by statistic on whole frames.
+//                    ten times faster (fast_in_order_port.hpp).
+//   FastLookAheadPort the look-ahead activation scheduler with eager refresh,
+//                    open page or auto precharge (the row-hit goal
+//                    configuration), event-driven in the same way
+//                    (fast_lookahead_port.hpp).
+// tests/rtl compare the fast ports with the reference command by command on
+// random request streams and statistic by statistic on whole frames.
 //
 // Contract (a memory port), per SDRAM cycle `now`, strictly increasing:
 //   - push(r) (when ready()) before tick(now) enqueues r with arrival now;
@@ -70,7 +74,8 @@ class MemoryPort {
 
 // The memory model of a run.
 enum class MemoryModel : std::uint8_t {
-  kAuto,       // FastInOrderPort for in-order + eager + open page, ReferencePort otherwise
+  kAuto,       // FastInOrderPort for in-order + eager + open page, FastLookAheadPort for
+               // lookahead + eager, ReferencePort otherwise
   kReference,  // always the reference controller
 };
 

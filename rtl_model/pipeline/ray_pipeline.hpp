@@ -64,6 +64,7 @@
 #include "rtl_model/layout/vizard2_layout.hpp"
 #include "rtl_model/pipeline/config.hpp"
 #include "rtl_model/pipeline/fast_in_order_port.hpp"
+#include "rtl_model/pipeline/fast_lookahead_port.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
 #include "rtl_model/pipeline/reference_port.hpp"
 #include "rtl_model/pipeline/sample_datapath.hpp"
@@ -120,12 +121,15 @@ class RayPipeline {
                                         config.scheduler_params));
       completions_[static_cast<std::size_t>(d)] = &ports_.back()->completions();
       fast_[static_cast<std::size_t>(d)] = dynamic_cast<FastInOrderPort*>(ports_.back().get());
+      lookahead_[static_cast<std::size_t>(d)] =
+          dynamic_cast<FastLookAheadPort*>(ports_.back().get());
       reference_[static_cast<std::size_t>(d)] = dynamic_cast<ReferencePort*>(ports_.back().get());
     }
     auto all = [](const auto& ports) {
       return std::all_of(ports.begin(), ports.end(), [](const auto* p) { return p != nullptr; });
     };
     all_fast_ = all(fast_);
+    all_lookahead_ = all(lookahead_);
     all_reference_ = all(reference_);
   }
 
@@ -526,6 +530,8 @@ class RayPipeline {
     // per-cycle members inline instead of going through MemoryPort's vtable.
     if (all_fast_) {
       for (std::size_t d = 0; d < layout::kDimms; ++d) memory_port(now, d, *fast_[d]);
+    } else if (all_lookahead_) {
+      for (std::size_t d = 0; d < layout::kDimms; ++d) memory_port(now, d, *lookahead_[d]);
     } else if (all_reference_) {
       for (std::size_t d = 0; d < layout::kDimms; ++d) memory_port(now, d, *reference_[d]);
     } else {
@@ -970,8 +976,9 @@ class RayPipeline {
   std::vector<std::unique_ptr<MemoryPort>> ports_;
   std::array<sim::Fifo<sdram::Completion>*, layout::kDimms> completions_{};  // ports_[d]'s
   std::array<FastInOrderPort*, layout::kDimms> fast_{};  // ports_[d] if it is one
+  std::array<FastLookAheadPort*, layout::kDimms> lookahead_{};  // ports_[d] if it is one
   std::array<ReferencePort*, layout::kDimms> reference_{};  // ports_[d] if it is one
-  bool all_fast_ = false, all_reference_ = false;
+  bool all_fast_ = false, all_lookahead_ = false, all_reference_ = false;
   std::vector<Buffered> buf_;
   std::size_t buf_head_ = 0, buf_count_ = 0;
   std::size_t buf_size_ = 0;  // buf_.size(), kept (a division by the entry's size)

@@ -1,7 +1,7 @@
 // The event-driven memory ports against the reference Controller ticked
-// every cycle: the in-order port (rtl_model/pipeline/fast_in_order_port.hpp)
-// and, for every policy, the reference port ticked only at the controller's
-// next events (reference_port.hpp, CommandScheduler::wake). Random request
+// every cycle: the in-order port (rtl_model/pipeline/fast_in_order_port.hpp),
+// the look-ahead port (fast_lookahead_port.hpp) and, for every policy, the reference port ticked
+// only at the controller's next events (reference_port.hpp, CommandScheduler::wake). Random request
 // streams with bank and row locality, pushed at random cycles and with
 // random consumer back-pressure, must give the same completions (request,
 // row outcome, first command, column command, data window) in the same
@@ -11,7 +11,9 @@
 #include <random>
 #include <vector>
 
+#include "rtl_model/pipeline/fast_lookahead_port.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
+#include "rtl_model/sdram/observer.hpp"
 #include "rtl_model/sdram/timing.hpp"
 
 namespace voxcast::test {
@@ -90,15 +92,24 @@ void compare_runs(const MemoryPort& ref, const MemoryPort& fast, const Served& a
   EXPECT_EQ(x.command_cycles, y.command_cycles);
   EXPECT_EQ(x.refresh_cycles, y.refresh_cycles);
   EXPECT_EQ(x.latency_sum, y.latency_sum);
+  EXPECT_EQ(x.latency_max, y.latency_max);
+  EXPECT_EQ(x.reads, y.reads);
+  EXPECT_EQ(x.completed, y.completed);
+  EXPECT_EQ(x.bytes, y.bytes);
+  EXPECT_EQ(x.auto_precharges, y.auto_precharges);
   const auto& p = ref.dimm_stats();
   const auto& q = fast.dimm_stats();
   EXPECT_EQ(p.commands, q.commands);
   EXPECT_EQ(p.refreshes, q.refreshes);
   EXPECT_GE(q.refreshes, 3u);
   EXPECT_EQ(p.precharge_alls, q.precharge_alls);
+  EXPECT_EQ(p.data_bus_busy_cycles, q.data_bus_busy_cycles);
+  EXPECT_EQ(p.refresh_busy_cycles, q.refresh_busy_cycles);
   for (std::size_t k = 0; k < p.banks.size(); ++k) {
     EXPECT_EQ(p.banks[k].activates, q.banks[k].activates);
     EXPECT_EQ(p.banks[k].precharges, q.banks[k].precharges);
+    EXPECT_EQ(p.banks[k].auto_precharges, q.banks[k].auto_precharges);
+    EXPECT_EQ(p.banks[k].reads, q.banks[k].reads);
     EXPECT_EQ(p.banks[k].open_cycles, q.banks[k].open_cycles);
   }
   EXPECT_EQ(ref.pending(), fast.pending());
@@ -125,6 +136,72 @@ TEST(FastInOrderPort, EqualsTheReferenceController) {
   d133.timing = rtl::sdram::presets::pc133_cl3();
   d133.clock = rtl::sim::clocks::pc133();
   compare(d133, rtl::sdram::ControllerConfig{}, 99, 1.0);
+}
+
+// Every command a port puts on the DIMM's bus, in order.
+struct CommandLog final : rtl::sdram::CommandObserver {
+  struct Entry {
+    rtl::sdram::Command cmd;
+    rtl::sdram::Address a;
+    rtl::sim::Cycle at;
+    bool operator==(const Entry&) const = default;
+  };
+  std::vector<Entry> log;
+  void on_command(rtl::sdram::Command cmd, const rtl::sdram::Address& a,
+                  rtl::sim::Cycle now) override {
+    log.push_back({cmd, a, now});
+  }
+};
+
+// The look-ahead port (fast_lookahead_port.hpp) against the reference
+// Controller with the look-ahead scheduler ticked every cycle: the same
+// commands (kind, address, cycle), completions and statistics, open page and
+// auto precharge, windows of 1 (in-order rows), 2 and 8, streams that stay
+// in a bank and streams that change banks often (what the look-ahead acts on).
+TEST(FastLookAheadPort, EqualsTheReferenceController) {
+  std::uint32_t seed = 900;
+  std::uint64_t rda = 0;
+  for (const auto& grade : {rtl::sdram::presets::pc100_cl2(), rtl::sdram::presets::pc100_cl3()})
+    for (int bl : {1, 4})
+      for (std::size_t ret : {std::size_t{1}, std::size_t{8}})
+        for (int window : {1, 2, 8})
+          for (bool auto_precharge : {false, true})
+            for (double pop : {1.0, 0.3})
+              for (double bank_change : {0.12, 0.5}) {
+                SCOPED_TRACE(::testing::Message()
+                             << grade.name << " BL" << bl << " return " << ret << " window "
+                             << window << (auto_precharge ? " auto precharge" : " open page")
+                             << " pop " << pop << " bank change " << bank_change);
+                rtl::sdram::DimmConfig d;
+                d.timing = grade;
+                d.burst_length = bl;
+                rtl::sdram::ControllerConfig cc{8, ret};
+                cc.auto_precharge = auto_precharge;
+                const rtl::sdram::SchedulerParams params{.reorder_window = window};
+                auto ref = rtl::pipeline::make_memory_port(MemoryModel::kReference, "lookahead",
+                                                           "eager", d, cc, false, params);
+                auto fast = rtl::pipeline::make_memory_port(MemoryModel::kAuto, "lookahead",
+                                                            "eager", d, cc, true, params);
+                ASSERT_NE(dynamic_cast<rtl::pipeline::FastLookAheadPort*>(fast.get()), nullptr);
+                CommandLog ref_log, fast_log;
+                ref->set_observer(&ref_log);
+                fast->set_observer(&fast_log);
+                const Served a = drive(*ref, seed, 8000, pop, bank_change);
+                const Served b = drive(*fast, seed, 8000, pop, bank_change);
+                ++seed;
+                ASSERT_EQ(ref_log.log.size(), fast_log.log.size());
+                for (std::size_t i = 0; i < ref_log.log.size(); ++i) {
+                  const auto& x = ref_log.log[i];
+                  ASSERT_EQ(x, fast_log.log[i])
+                      << "command " << i << ": reference " << x.cmd << " bank " << x.a.bank
+                      << " row " << x.a.row << " at cycle " << x.at;
+                }
+                compare_runs(*ref, *fast, a, b);
+                rda += fast->controller_stats().auto_precharges;
+              }
+  // The streams exercise the auto precharge (EventDrivenPort.ThePoliciesDiffer
+  // shows that they make the look-ahead schedule differ from the in-order one).
+  EXPECT_GT(rda, 1000u);
 }
 
 // Every policy, event-driven (the reference port ticked at the controller's
