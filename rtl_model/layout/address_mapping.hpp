@@ -82,7 +82,11 @@ class AddressMapping {
   // computed once (the address generator maps four words per sample).
   sdram::Address map(const WordCoord& c) const {
     // The linear mapping (the baseline's) without the virtual call.
-    const std::uint64_t i = linear_index_ ? grid_.linear(c) : index(c);
+    return split(linear_index_ ? grid_.linear(c) : index(c));
+  }
+  // split_row_bank_column(i, geometry()) (for a caller that has the index
+  // from the final class, without the virtual call).
+  sdram::Address split(std::uint64_t i) const {
     sdram::Address a;
     a.column = static_cast<std::uint32_t>(i & column_mask_);
     a.bank = static_cast<std::uint32_t>((i >> bank_shift_) & bank_mask_);

@@ -32,27 +32,4 @@ BrickedMapping::BrickedMapping(const WordGrid& grid, const sdram::Geometry& geom
   shift_xy_ = shift_x_ + std::countr_zero(bricks_[1]);
 }
 
-std::uint64_t BrickedMapping::index(const WordCoord& c) const {
-  // Step 1: the brick's number, x fastest; step 2: the word inside it, x fastest.
-  const std::uint64_t brick =
-      (std::uint64_t{c.z2 >> shift_[2]} * bricks_[1] + (c.y2 >> shift_[1])) * bricks_[0] +
-      (c.x >> shift_[0]);
-  const std::uint64_t inner = (std::uint64_t{c.z2 & edge_mask_[2]} << inner_z_shift_) |
-                              (std::uint64_t{c.y2 & edge_mask_[1]} << shift_[0]) |
-                              (c.x & edge_mask_[0]);
-  const std::uint64_t i = (brick << brick_bits_) | inner;
-  return swizzle_ ? swizzled(i) : i;
-}
-
-std::uint64_t BrickedMapping::swizzled(std::uint64_t i) const {
-  // Rotate the bank field by (y + z) of the brick that starts the row group.
-  const std::uint64_t first = (i & ~row_offset_mask_) >> brick_bits_;
-  const std::uint64_t by = pow2_ ? (first >> shift_x_) & (bricks_[1] - 1u)
-                                 : (first / bricks_[0]) % bricks_[1];
-  const std::uint64_t bz =
-      pow2_ ? first >> shift_xy_ : first / (std::uint64_t{bricks_[0]} * bricks_[1]);
-  const std::uint64_t bank = (((i >> column_bits_) & bank_mask_) + by + bz) & bank_mask_;
-  return (i & ~(bank_mask_ << column_bits_)) | (bank << column_bits_);
-}
-
 }  // namespace voxcast::rtl::layout

@@ -61,6 +61,7 @@
 #include "refmodel/error.hpp"
 #include "refmodel/render/quant_image.hpp"
 #include "rtl_model/layout/address_mapping.hpp"
+#include "rtl_model/layout/bricked_mapping.hpp"
 #include "rtl_model/layout/vizard2_layout.hpp"
 #include "rtl_model/pipeline/config.hpp"
 #include "rtl_model/pipeline/fast_in_order_port.hpp"
@@ -91,6 +92,7 @@ class RayPipeline {
         layout_(memory.dims),
         memory_(memory),
         mapping_(mapping),
+        bricked_(dynamic_cast<const layout::BrickedMapping*>(&mapping)),
         mip_(frame.mode == hls::FrameMode::Mip),
         shaded_(frame.mode == hls::FrameMode::Shaded),
         leap_(frame.leap.enabled && frame.mode != hls::FrameMode::Mip),
@@ -717,7 +719,13 @@ class RayPipeline {
     if (s.next_known) return;
     s.next_access = hls::address_generator<P>(f_.geometry, s.p);
     s.next_coord = layout::Vizard2Layout::neighbourhood(layout_.corner<P>(s.next_access));
-    for (std::size_t d = 0; d < layout::kDimms; ++d) s.next_addr[d] = mapping_.map(s.next_coord[d]);
+    if (bricked_) {  // called as its final class: its index inlines
+      for (std::size_t d = 0; d < layout::kDimms; ++d)
+        s.next_addr[d] = mapping_.split(bricked_->index(s.next_coord[d]));
+    } else {
+      for (std::size_t d = 0; d < layout::kDimms; ++d)
+        s.next_addr[d] = mapping_.map(s.next_coord[d]);
+    }
     s.next_known = true;
   }
   // Ray i moved on to another sample: its next sample and row hits are unknown.
@@ -938,6 +946,7 @@ class RayPipeline {
   layout::Vizard2Layout layout_;
   layout::Vizard2Memory<P> memory_;
   const layout::AddressMapping& mapping_;
+  const layout::BrickedMapping* bricked_;  // mapping_ if it is one
   bool mip_, shaded_, leap_;
 
   std::vector<std::pair<int, int>> order_;
