@@ -1,5 +1,6 @@
 #include "rtl_model/pipeline/fast_lookahead_port.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "refmodel/error.hpp"
@@ -31,7 +32,6 @@ FastLookAheadPort::FastLookAheadPort(const sdram::DimmConfig& dimm,
       not_before_(sdram::ConstraintTable(t_), dimm.geometry.banks, 0, dimm.geometry.bank_groups,
                   sdram::NotBefore::asked({Command::kAct, Command::kRd, Command::kRda,
                                            Command::kPre, Command::kPrea, Command::kRef})),
-      banks_(dimm.geometry.banks),
       window_(static_cast<std::size_t>(std::max(reorder_window, 1))),
       auto_precharge_(controller.auto_precharge),
       postpone_limit_(dimm.refresh_postpone_limit),
@@ -49,6 +49,7 @@ FastLookAheadPort::FastLookAheadPort(const sdram::DimmConfig& dimm,
   started_.resize(accesses_.size());
   row_key_.resize(accesses_.size());
   open_key_.assign(geometry_.banks, kClosed);
+  activated_at_.assign(geometry_.banks, 0);
   pending_per_bank_.assign(geometry_.banks, 0);
   ring_size_ = accesses_.size();
   ds_.banks.resize(geometry_.banks);
@@ -130,9 +131,8 @@ void FastLookAheadPort::row_command(std::size_t at, Command cmd, Cycle now) {
   const sdram::Address& a = accesses_[at].request.address;
   not_before_.raise(cmd, a.bank, now);
   if (cmd == Command::kAct) {
-    banks_[a.bank] = Bank{true, a.row, now};
     open_key_[a.bank] = key(a.bank, a.row);
-    open_mask_ |= std::uint64_t{1} << a.bank;
+    activated_at_[a.bank] = now;
     ++ds_.banks[a.bank].activates;
   } else {
     close(a.bank, now);  // a conflict: the bank has another row open
@@ -185,14 +185,11 @@ VOXCAST_HOT_INLINE bool FastLookAheadPort::row_wanted_by_another() const {
 }
 
 void FastLookAheadPort::close(std::uint32_t bank, Cycle closed_at) {
-  Bank& b = banks_[bank];
-  if (!b.open) [[unlikely]]
+  if (open_key_[bank] == kClosed) [[unlikely]]
     fail("a row closed in an idle bank", closed_at);
-  ds_.banks[bank].open_cycles += closed_at - b.activated_at;
+  ds_.banks[bank].open_cycles += closed_at - activated_at_[bank];
   ++ds_.banks[bank].precharges;
-  b.open = false;
   open_key_[bank] = kClosed;
-  open_mask_ &= ~(std::uint64_t{1} << bank);
 }
 
 // Every command's common accounting.
@@ -245,13 +242,18 @@ VOXCAST_HOT_INLINE Cycle FastLookAheadPort::next_wake(Cycle now) {
   return std::max(w, now + 1);
 }
 
+bool FastLookAheadPort::all_closed() const {
+  return std::all_of(open_key_.begin(), open_key_.end(),
+                     [](std::uint64_t k) { return k == kClosed; });
+}
+
 // The refresh sequence (EagerRefresh): close every row, then REF; its cycles
 // are counted while it waits.
 void FastLookAheadPort::step_refresh(Cycle now) {
   if (now >= overdue_at_) fail("refresh overdue", now);
   refresh_at_ = sdram::kNever;  // every tick until the REF
   ++cs_.refresh_cycles;
-  const Command cmd = open_mask_ == 0 ? Command::kRef : Command::kPrea;
+  const Command cmd = all_closed() ? Command::kRef : Command::kPrea;
   if (earliest(cmd, 0) <= now) {
     issue_rank_command(cmd, now);
     if (cmd == Command::kRef) refresh_at_ = refresh_due_;
@@ -263,10 +265,10 @@ void FastLookAheadPort::issue_rank_command(Command cmd, Cycle now) {
   not_before_.raise(cmd, 0, now);
   if (cmd == Command::kPrea) {
     for (std::uint32_t b = 0; b < geometry_.banks; ++b)
-      if (banks_[b].open) close(b, now);
+      if (open_key_[b] != kClosed) close(b, now);
     ++ds_.precharge_alls;
   } else {
-    if (open_mask_ != 0) fail("REF with a row open", now);
+    if (!all_closed()) fail("REF with a row open", now);
     ++ds_.refreshes;
     ds_.refresh_busy_cycles += t_.tRFC;
     ++refreshes_;

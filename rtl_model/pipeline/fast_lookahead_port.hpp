@@ -103,12 +103,6 @@ class FastLookAheadPort final : public MemoryPort {
   const sdram::DimmStats& dimm_stats() const override { return ds_; }
 
  private:
-  struct Bank {
-    bool open = false;
-    std::uint32_t row = 0;
-    sim::Cycle activated_at = 0;
-  };
-
   // i mod accesses_.size() for i < 2 * accesses_.size(), without a division.
   std::size_t wrap(std::size_t i) const { return i >= ring_size_ ? i - ring_size_ : i; }
   // The pending request `j` places behind the oldest (j < pending_count_).
@@ -123,10 +117,11 @@ class FastLookAheadPort final : public MemoryPort {
   // The command request `a` needs next: ACT (its bank idle), its READ (its
   // row open) or PRE (another row open): Dimm::next_command.
   sdram::Command next_command(const sdram::Address& a) const {
-    const Bank& b = banks_[a.bank];
-    if (!b.open) return sdram::Command::kAct;
-    return b.row == a.row ? sdram::Command::kRd : sdram::Command::kPre;
+    const std::uint64_t open = open_key_[a.bank];
+    if (open == kClosed) return sdram::Command::kAct;
+    return open == key(a.bank, a.row) ? sdram::Command::kRd : sdram::Command::kPre;
   }
+  bool all_closed() const;
   sim::Cycle earliest(sdram::Command cmd, std::uint32_t bank) const {
     return not_before_.at(cmd, bank);
   }
@@ -161,12 +156,13 @@ class FastLookAheadPort final : public MemoryPort {
   sdram::TimingCycles t_;
   sdram::Geometry geometry_;
   sdram::NotBefore not_before_;
-  std::vector<Bank> banks_;
-  std::vector<std::uint64_t> open_key_;  // per bank: key(bank, its open row), or kClosed
+  // The banks' state, one word per bank: key(bank, its open row), or
+  // kClosed (the form the look-ahead walk compares), and when its row opened.
+  std::vector<std::uint64_t> open_key_;
+  std::vector<sim::Cycle> activated_at_;
   // Per bank, the pending requests to it: when every one is to the oldest
   // request's bank (a row-hit stream), the look-ahead has nothing to walk.
   std::vector<std::uint32_t> pending_per_bank_;
-  std::uint64_t open_mask_ = 0;  // bit b: bank b has a row open
   bool ahead_known_ = false;     // look_ahead()'s answer, while nothing changed
   std::size_t ahead_ = kNone;
   sdram::Command ahead_cmd_ = sdram::Command::kNop;
