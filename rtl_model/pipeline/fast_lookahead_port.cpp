@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "refmodel/error.hpp"
-#include "rtl_model/sdram/dimm.hpp"
 
 namespace voxcast::rtl::pipeline {
 
@@ -26,39 +25,16 @@ const sdram::DimmConfig& with_few_banks(const sdram::DimmConfig& dimm) {
 
 FastLookAheadPort::FastLookAheadPort(const sdram::DimmConfig& dimm,
                                      const sdram::ControllerConfig& controller, int reorder_window)
-    : t_(sdram::Dimm(with_few_banks(dimm)).timing()),  // the Dimm validates the configuration
-      geometry_(dimm.geometry),
-      // The commands the port asks the table about (it issues no WR).
-      not_before_(sdram::ConstraintTable(t_), dimm.geometry.banks, 0, dimm.geometry.bank_groups,
-                  sdram::NotBefore::asked({Command::kAct, Command::kRd, Command::kRda,
-                                           Command::kPre, Command::kPrea, Command::kRef})),
+    // The commands the port asks the table about (it issues no WR).
+    : EventDrivenPort("fast look-ahead controller", with_few_banks(dimm), controller,
+                      sdram::NotBefore::asked({Command::kAct, Command::kRd, Command::kRda,
+                                               Command::kPre, Command::kPrea, Command::kRef})),
       window_(static_cast<std::size_t>(std::max(reorder_window, 1))),
       auto_precharge_(controller.auto_precharge),
-      postpone_limit_(dimm.refresh_postpone_limit),
-      completions_("sdram.completions", controller.return_depth) {
-  if (controller.queue_depth == 0) throw Error("Controller: request queue depth 0");
-  refresh_due_ = static_cast<Cycle>(t_.tREFI);
-  refresh_at_ = refresh_due_;
-  overdue_at_ = static_cast<Cycle>(2 + postpone_limit_) * t_.tREFI;
-  burst_ = t_.burst_cycles();
-  burst_bytes_ = static_cast<std::uint64_t>(t_.BL) * geometry_.bytes_per_beat();
-  data_first_ = t_.CL;
-  read_to_precharge_ = t_.read_to_precharge();
-  queue_depth_ = controller.queue_depth;
-  accesses_.resize(controller.queue_depth + controller.return_depth);
+      read_to_precharge_(t_.read_to_precharge()) {
   started_.resize(accesses_.size());
   row_key_.resize(accesses_.size());
-  open_key_.assign(geometry_.banks, kClosed);
-  activated_at_.assign(geometry_.banks, 0);
   pending_per_bank_.assign(geometry_.banks, 0);
-  ring_size_ = accesses_.size();
-  ds_.banks.resize(geometry_.banks);
-}
-
-void FastLookAheadPort::fail(const char* what, Cycle now) const {
-  std::ostringstream os;
-  os << "fast look-ahead controller at cycle " << now << ": " << what;
-  throw Error(os.str());
 }
 
 #define VOXCAST_HOT_INLINE [[gnu::always_inline]] inline
@@ -125,52 +101,38 @@ VOXCAST_HOT_INLINE void FastLookAheadPort::start(std::size_t at, Command cmd, Cy
 
 // ACT or PRE for the request at ring place `at` (schedule() checked the table).
 void FastLookAheadPort::row_command(std::size_t at, Command cmd, Cycle now) {
-  if (now <= last_command_) [[unlikely]]
-    fail("two commands in one cycle", now);
+  check_one_command(now);
   start(at, cmd, now);
   const sdram::Address& a = accesses_[at].request.address;
-  not_before_.raise(cmd, a.bank, now);
   if (cmd == Command::kAct) {
-    open_key_[a.bank] = key(a.bank, a.row);
-    activated_at_[a.bank] = now;
-    ++ds_.banks[a.bank].activates;
+    activate(a, now);
   } else {
-    close(a.bank, now);  // a conflict: the bank has another row open
+    precharge(a, now);  // a conflict: the bank has another row open
   }
-  issued(cmd, a, now);
+  ahead_known_ = false;  // the banks changed
 }
 
 // The oldest request's READ, or RDA (auto precharge) when no other pending
 // request wants its row and the table allows RDA now (Controller::schedule).
 // It completes the request's commands: the request moves to in flight.
 VOXCAST_HOT_INLINE void FastLookAheadPort::column_command(Cycle now) {
-  if (now <= last_command_) [[unlikely]]
-    fail("two commands in one cycle", now);
+  check_one_command(now);
   const std::size_t head = pending_head_;
   start(head, Command::kRd, now);
-  sdram::Completion& c = accesses_[head];
-  const sdram::Address& a = c.request.address;
+  const sdram::Address& a = accesses_[head].request.address;
   const bool rda =
       auto_precharge_ && !row_wanted_by_another() && earliest(Command::kRda, a.bank) <= now;
   const Command cmd = rda ? Command::kRda : Command::kRd;
   not_before_.raise(cmd, a.bank, now);
-  sdram::BankStats& bank = ds_.banks[a.bank];
-  ++bank.reads;
-  ds_.data_bus_busy_cycles += burst_;
   if (rda) {
     // The row closes where its internal precharge starts (Dimm::apply).
     ++cs_.auto_precharges;
-    ++bank.auto_precharges;
+    ++ds_.banks[a.bank].auto_precharges;
     close(a.bank, now + read_to_precharge_);
   }
-  ++cs_.reads;
-  c.column_command = now;
-  c.data = sdram::DataWindow{now + data_first_, now + data_first_ + burst_ - 1};
-  issued(cmd, a, now);
   --pending_per_bank_[a.bank];
-  pending_head_ = wrap(pending_head_ + 1);
-  --pending_count_;
-  ++flight_count_;
+  read_issued(cmd, now);  // the request moves to in flight
+  ahead_known_ = false;   // the queue changed
 }
 
 // Another pending request wants the oldest request's row (the reference asks
@@ -184,42 +146,8 @@ VOXCAST_HOT_INLINE bool FastLookAheadPort::row_wanted_by_another() const {
   return false;
 }
 
-void FastLookAheadPort::close(std::uint32_t bank, Cycle closed_at) {
-  if (open_key_[bank] == kClosed) [[unlikely]]
-    fail("a row closed in an idle bank", closed_at);
-  ds_.banks[bank].open_cycles += closed_at - activated_at_[bank];
-  ++ds_.banks[bank].precharges;
-  open_key_[bank] = kClosed;
-}
-
-// Every command's common accounting.
-VOXCAST_HOT_INLINE void FastLookAheadPort::issued(Command cmd, const sdram::Address& a, Cycle now) {
-  last_command_ = now;
-  ahead_known_ = false;  // the queue or the banks changed
-  ++ds_.commands;
-  ++cs_.command_cycles;
-  ++activity_;
-  if (observer_) observer_->on_command(cmd, a, now);
-}
-
-// The accesses whose last data beat is at or before `now` (at least one).
-VOXCAST_HOT_INLINE void FastLookAheadPort::retire(Cycle now) {
-  do {
-    const sdram::Completion& c = accesses_[flight_head_];
-    ++cs_.completed;
-    ++activity_;
-    cs_.bytes += burst_bytes_;
-    const Cycle latency = c.latency();
-    cs_.latency_sum += latency;
-    cs_.latency_max = std::max(cs_.latency_max, latency);
-    completions_.push_copy(c);
-    flight_head_ = wrap(flight_head_ + 1);
-    --flight_count_;
-  } while (flight_count_ != 0 && accesses_[flight_head_].data.last <= now);
-}
-
 // Controller::next_event with LookAheadActivation::wake: the next REF due
-// (while the sequence runs, the next cycle: refresh_at_ is then kNever), the
+// (while the sequence runs, the next cycle: next_refresh() is then kNever), the
 // oldest in-flight access's last beat, the oldest request's next command
 // (its column command only with a free return slot), and the row command of
 // the one later request the policy would prepare. When the wake is the next
@@ -227,8 +155,7 @@ VOXCAST_HOT_INLINE void FastLookAheadPort::retire(Cycle now) {
 // tick that issues nothing (in a row-hit stream the oldest request's next
 // READ is at the next cycle, and the walk was a third of the port's work).
 VOXCAST_HOT_INLINE Cycle FastLookAheadPort::next_wake(Cycle now) {
-  Cycle w = refresh_at_;
-  if (flight_count_ != 0) w = std::min(w, accesses_[flight_head_].data.last);
+  Cycle w = next_retire(next_refresh());
   if (pending_count_ != 0) {
     const sdram::Address& a = accesses_[pending_head_].request.address;
     const Command oldest = next_command(a);
@@ -242,52 +169,6 @@ VOXCAST_HOT_INLINE Cycle FastLookAheadPort::next_wake(Cycle now) {
   return std::max(w, now + 1);
 }
 
-bool FastLookAheadPort::all_closed() const {
-  return std::all_of(open_key_.begin(), open_key_.end(),
-                     [](std::uint64_t k) { return k == kClosed; });
-}
-
-// The refresh sequence (EagerRefresh): close every row, then REF; its cycles
-// are counted while it waits.
-void FastLookAheadPort::step_refresh(Cycle now) {
-  if (now >= overdue_at_) fail("refresh overdue", now);
-  refresh_at_ = sdram::kNever;  // every tick until the REF
-  ++cs_.refresh_cycles;
-  const Command cmd = all_closed() ? Command::kRef : Command::kPrea;
-  if (earliest(cmd, 0) <= now) {
-    issue_rank_command(cmd, now);
-    if (cmd == Command::kRef) refresh_at_ = refresh_due_;
-  }
-}
-
-void FastLookAheadPort::issue_rank_command(Command cmd, Cycle now) {
-  if (now <= last_command_) fail("two commands in one cycle", now);
-  not_before_.raise(cmd, 0, now);
-  if (cmd == Command::kPrea) {
-    for (std::uint32_t b = 0; b < geometry_.banks; ++b)
-      if (open_key_[b] != kClosed) close(b, now);
-    ++ds_.precharge_alls;
-  } else {
-    if (!all_closed()) fail("REF with a row open", now);
-    ++ds_.refreshes;
-    ds_.refresh_busy_cycles += t_.tRFC;
-    ++refreshes_;
-    refresh_due_ = (refreshes_ + 1) * t_.tREFI;
-    overdue_at_ = (refreshes_ + 2 + postpone_limit_) * t_.tREFI;
-  }
-  issued(cmd, sdram::Address{}, now);
-}
-
-void FastLookAheadPort::expect_drained() const {
-  if (pending_count_ != 0 || flight_count_ != 0) {
-    std::ostringstream os;
-    os << "controller: " << pending_count_ << " request(s) pending and " << flight_count_
-       << " access(es) in flight at the end";
-    throw Error(os.str());
-  }
-  completions_.expect_drained();
-}
-
 #undef VOXCAST_HOT_INLINE
 
 // One tick: its helpers above are inlined into it (it runs at about every
@@ -295,12 +176,12 @@ void FastLookAheadPort::expect_drained() const {
 // their bodies).
 void FastLookAheadPort::step(Cycle now) {
   ++cs_.cycles;
-  if (now >= refresh_at_) [[unlikely]] {  // EagerRefresh: as soon as due
-    step_refresh(now);
+  if (refresh_due(now)) [[unlikely]] {            // EagerRefresh: as soon as due
+    if (step_refresh(now)) ahead_known_ = false;  // the banks changed
   } else if (pending_count_ != 0) {
     schedule(now);
   }
-  if (flight_count_ != 0 && accesses_[flight_head_].data.last <= now) retire(now);
+  if (retire_due(now)) retire(now);
   completions_.sample();
   wake_ = next_wake(now);
 }

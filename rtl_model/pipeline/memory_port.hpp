@@ -1,5 +1,5 @@
 // The pipeline's port to one DIMM: a request queue, a controller and its
-// completions, behind one interface with two implementations:
+// completions, behind one interface with three implementations:
 //
 //   ReferencePort    the reference sdram::Controller with any scheduler and
 //                    refresh policy, the Dimm as referee of every command
@@ -12,6 +12,8 @@
 //                    open page or auto precharge (the row-hit goal
 //                    configuration), event-driven in the same way
 //                    (fast_lookahead_port.hpp).
+// The two event-driven ports share their queue, banks, refresh sequence and
+// statistics in EventDrivenPort (event_driven_port.hpp).
 // tests/rtl compare the fast ports with the reference command by command on
 // random request streams and statistic by statistic on whole frames.
 //

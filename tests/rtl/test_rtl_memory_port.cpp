@@ -9,10 +9,14 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 #include <vector>
 
+#include "refmodel/error.hpp"
+#include "rtl_model/pipeline/fast_in_order_port.hpp"
 #include "rtl_model/pipeline/fast_lookahead_port.hpp"
 #include "rtl_model/pipeline/memory_port.hpp"
+#include "rtl_model/sdram/geometry.hpp"
 #include "rtl_model/sdram/observer.hpp"
 #include "rtl_model/sdram/timing.hpp"
 
@@ -31,7 +35,7 @@ struct Served {
 // bank_change: the share of requests that move to another bank (with a new
 // row at times), which is what the reordering policies act on.
 Served drive(MemoryPort& port, std::uint32_t seed, rtl::sim::Cycle cycles, double pop_rate,
-          double bank_change = 0.12) {
+             double bank_change = 0.12, std::uint32_t banks = 4) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   Served run;
@@ -42,7 +46,7 @@ Served drive(MemoryPort& port, std::uint32_t seed, rtl::sim::Cycle cycles, doubl
     if (u(rng) < 0.7 && port.ready()) {
       const double r = u(rng);
       if (r < bank_change * 2 / 3) row = static_cast<std::uint32_t>(rng() % 4096);
-      if (r < bank_change) bank = static_cast<std::uint32_t>(rng() % 4);
+      if (r < bank_change) bank = static_cast<std::uint32_t>(rng() % banks);
       column = (column + 1) % 512;
       port.push(rtl::sdram::Request{id++, rtl::sdram::RequestKind::kRead, {bank, row, column}, now});
     }
@@ -56,6 +60,31 @@ Served drive(MemoryPort& port, std::uint32_t seed, rtl::sim::Cycle cycles, doubl
   return run;
 }
 
+// Every command a port puts on the DIMM's bus, in order.
+struct CommandLog final : rtl::sdram::CommandObserver {
+  struct Entry {
+    rtl::sdram::Command cmd;
+    rtl::sdram::Address a;
+    rtl::sim::Cycle at;
+    bool operator==(const Entry&) const = default;
+  };
+  std::vector<Entry> log;
+  void on_command(rtl::sdram::Command cmd, const rtl::sdram::Address& a,
+                  rtl::sim::Cycle now) override {
+    log.push_back({cmd, a, now});
+  }
+};
+
+// The same commands (kind, address, cycle) in the same order.
+void compare_commands(const CommandLog& ref, const CommandLog& fast) {
+  ASSERT_EQ(ref.log.size(), fast.log.size());
+  for (std::size_t i = 0; i < ref.log.size(); ++i) {
+    const auto& x = ref.log[i];
+    ASSERT_EQ(x, fast.log[i]) << "command " << i << ": reference " << x.cmd << " bank " << x.a.bank
+                              << " row " << x.a.row << " at cycle " << x.at;
+  }
+}
+
 // `fast` against `ref` after the same stream.
 void compare_runs(const MemoryPort& ref, const MemoryPort& fast, const Served& a, const Served& b);
 
@@ -64,8 +93,13 @@ void compare(const rtl::sdram::DimmConfig& dimm, const rtl::sdram::ControllerCon
   const rtl::sim::Cycle cycles = 8000;  // at least three refresh intervals
   auto ref = rtl::pipeline::make_memory_port(MemoryModel::kReference, "in-order", "eager", dimm, cc, false);
   auto fast = rtl::pipeline::make_memory_port(MemoryModel::kAuto, "in-order", "eager", dimm, cc, true);
+  ASSERT_NE(dynamic_cast<rtl::pipeline::FastInOrderPort*>(fast.get()), nullptr);
+  CommandLog ref_log, fast_log;
+  ref->set_observer(&ref_log);
+  fast->set_observer(&fast_log);
   const Served a = drive(*ref, seed, cycles, pop_rate);
   const Served b = drive(*fast, seed, cycles, pop_rate);
+  compare_commands(ref_log, fast_log);
   compare_runs(*ref, *fast, a, b);
 }
 
@@ -138,21 +172,6 @@ TEST(FastInOrderPort, EqualsTheReferenceController) {
   compare(d133, rtl::sdram::ControllerConfig{}, 99, 1.0);
 }
 
-// Every command a port puts on the DIMM's bus, in order.
-struct CommandLog final : rtl::sdram::CommandObserver {
-  struct Entry {
-    rtl::sdram::Command cmd;
-    rtl::sdram::Address a;
-    rtl::sim::Cycle at;
-    bool operator==(const Entry&) const = default;
-  };
-  std::vector<Entry> log;
-  void on_command(rtl::sdram::Command cmd, const rtl::sdram::Address& a,
-                  rtl::sim::Cycle now) override {
-    log.push_back({cmd, a, now});
-  }
-};
-
 // The look-ahead port (fast_lookahead_port.hpp) against the reference
 // Controller with the look-ahead scheduler ticked every cycle: the same
 // commands (kind, address, cycle), completions and statistics, open page and
@@ -189,19 +208,108 @@ TEST(FastLookAheadPort, EqualsTheReferenceController) {
                 const Served a = drive(*ref, seed, 8000, pop, bank_change);
                 const Served b = drive(*fast, seed, 8000, pop, bank_change);
                 ++seed;
-                ASSERT_EQ(ref_log.log.size(), fast_log.log.size());
-                for (std::size_t i = 0; i < ref_log.log.size(); ++i) {
-                  const auto& x = ref_log.log[i];
-                  ASSERT_EQ(x, fast_log.log[i])
-                      << "command " << i << ": reference " << x.cmd << " bank " << x.a.bank
-                      << " row " << x.a.row << " at cycle " << x.at;
-                }
+                compare_commands(ref_log, fast_log);
                 compare_runs(*ref, *fast, a, b);
                 rda += fast->controller_stats().auto_precharges;
               }
   // The streams exercise the auto precharge (EventDrivenPort.ThePoliciesDiffer
   // shows that they make the look-ahead schedule differ from the in-order one).
   EXPECT_GT(rda, 1000u);
+}
+
+// Both event-driven ports on a DDR4 module (16 banks in 4 bank groups, BL8
+// in 4 clocks): the same commands, completions and statistics as the
+// reference, with streams over every bank, so that the bank-group timing
+// (tCCD_L and tRRD_L within a group, tCCD_S and tRRD_S across; tFAW) decides
+// cycles. The ports take the group of a bank and the burst's clocks from the
+// module, as the Dimm does.
+TEST(FastPorts, Ddr4BankGroupsEqualTheReference) {
+  rtl::sdram::DimmConfig d;
+  d.geometry = rtl::sdram::geometries::mta18asf2g72pz();
+  d.timing = rtl::sdram::presets::ddr4_2400_cl17();
+  d.clock = rtl::sim::clocks::ddr4_2400();
+  d.burst_length = 8;
+  ASSERT_EQ(d.geometry.bank_groups, 4u);
+  std::uint32_t seed = 1200;
+  for (const char* policy : {"in-order", "lookahead"})
+    for (bool auto_precharge : {false, true})
+      for (double bank_change : {0.12, 0.5}) {
+        if (std::string(policy) == "in-order" && auto_precharge) continue;  // (the reference's)
+        SCOPED_TRACE(::testing::Message() << policy << (auto_precharge ? " auto precharge" : "")
+                                          << " bank change " << bank_change);
+        rtl::sdram::ControllerConfig cc{8, 8};
+        cc.auto_precharge = auto_precharge;
+        const rtl::sdram::SchedulerParams params{.reorder_window = 8};
+        auto ref = rtl::pipeline::make_memory_port(MemoryModel::kReference, policy, "eager", d, cc,
+                                                   false, params);
+        auto fast = rtl::pipeline::make_memory_port(MemoryModel::kAuto, policy, "eager", d, cc,
+                                                    true, params);
+        ASSERT_EQ(dynamic_cast<rtl::pipeline::EventDrivenPort*>(fast.get()) != nullptr, true);
+        CommandLog ref_log, fast_log;
+        ref->set_observer(&ref_log);
+        fast->set_observer(&fast_log);
+        // Three refresh intervals of DDR4-2400 (tREFI 7.8 us: 9,360 clocks).
+        const Served a = drive(*ref, seed, 30000, 1.0, bank_change, d.geometry.banks);
+        const Served b = drive(*fast, seed, 30000, 1.0, bank_change, d.geometry.banks);
+        ++seed;
+        compare_commands(ref_log, fast_log);
+        compare_runs(*ref, *fast, a, b);
+      }
+}
+
+// A request the event-driven ports cannot serve is an error that names the
+// port and the cycle, not a silently wrong schedule.
+TEST(FastPorts, RejectRequestsTheyCannotServe) {
+  const rtl::sdram::DimmConfig d;  // PC100, 4 banks
+  const rtl::sdram::ControllerConfig cc{2, 8};
+  const rtl::sdram::Address inside{1, 2, 3};
+  const auto expect_error = [](auto&& f, const std::string& what) {
+    try {
+      f();
+      ADD_FAILURE() << "no error for " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("controller at cycle 5"), std::string::npos) << e.what();
+    }
+  };
+  for (const char* policy : {"in-order", "lookahead"}) {
+    SCOPED_TRACE(policy);
+    auto port = rtl::pipeline::make_memory_port(MemoryModel::kAuto, policy, "eager", d, cc, true);
+    ASSERT_NE(dynamic_cast<rtl::pipeline::EventDrivenPort*>(port.get()), nullptr);
+    using rtl::sdram::Request;
+    using rtl::sdram::RequestKind;
+    expect_error(
+        [&] {
+          port->push(Request{0, RequestKind::kRead, {4, 0, 0}, 5});
+        },
+        "request outside the DIMM");
+    expect_error(
+        [&] {
+          port->push(Request{0, RequestKind::kRead, {0, d.geometry.rows, 0}, 5});
+        },
+        "request outside the DIMM");
+    expect_error(
+        [&] {
+          port->push(Request{0, RequestKind::kRead, {0, 0, d.geometry.columns}, 5});
+        },
+        "request outside the DIMM");
+    expect_error(
+        [&] {
+          port->push(Request{0, RequestKind::kWrite, inside, 5});
+        },
+        "a write request");
+    // The queue holds two; the third push is refused, and nothing was taken.
+    port->push(Request{1, RequestKind::kRead, inside, 5});
+    port->push(Request{2, RequestKind::kRead, inside, 5});
+    EXPECT_FALSE(port->ready());
+    expect_error(
+        [&] {
+          port->push(Request{3, RequestKind::kRead, inside, 5});
+        },
+        "request queue is full");
+    EXPECT_EQ(port->pending(), 2u);
+    EXPECT_EQ(port->controller_stats().requests, 2u);
+  }
 }
 
 // Every policy, event-driven (the reference port ticked at the controller's
