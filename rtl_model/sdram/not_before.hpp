@@ -3,8 +3,8 @@
 // command (and for the rank commands) the first cycle that every row issued
 // so far allows. Issuing a command raises those cycles; asking is one look-up.
 // DDR4's bank groups split "other bank" into the same and another group.
-// The Dimm (dimm.hpp) and FastInOrderPort (pipeline/fast_in_order_port.hpp)
-// keep their timing in one of these.
+// The Dimm (dimm.hpp) and the event-driven memory ports
+// (pipeline/event_driven_port.hpp) keep their timing in one of these.
 //
 // Contract: after raise(p, b, t) for every command issued so far, at(cmd, bank)
 // is the largest (t + delay) over the table's rows (p -> cmd) whose scope

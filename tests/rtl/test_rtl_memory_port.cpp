@@ -244,7 +244,7 @@ TEST(FastPorts, Ddr4BankGroupsEqualTheReference) {
                                                    false, params);
         auto fast = rtl::pipeline::make_memory_port(MemoryModel::kAuto, policy, "eager", d, cc,
                                                     true, params);
-        ASSERT_EQ(dynamic_cast<rtl::pipeline::EventDrivenPort*>(fast.get()) != nullptr, true);
+        ASSERT_NE(dynamic_cast<rtl::pipeline::EventDrivenPort*>(fast.get()), nullptr);
         CommandLog ref_log, fast_log;
         ref->set_observer(&ref_log);
         fast->set_observer(&fast_log);
