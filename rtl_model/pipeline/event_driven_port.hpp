@@ -167,6 +167,19 @@ class EventDrivenPort : public MemoryPort {
   bool all_closed() const;
 
   // ---- Commands ---------------------------------------------------------------------------------
+  // A request's first command `cmd` at `now` tells how its row met its bank
+  // (READ: a hit, ACT: a miss, PRE: a conflict): its outcome and the count.
+  [[gnu::always_inline]] void first_command(sdram::Completion& c, sdram::Command cmd,
+                                            sim::Cycle now) {
+    const sdram::RowOutcome o = cmd == sdram::Command::kRd    ? sdram::RowOutcome::kHit
+                                : cmd == sdram::Command::kAct ? sdram::RowOutcome::kMiss
+                                                              : sdram::RowOutcome::kConflict;
+    c.outcome = o;
+    c.first_command = now;
+    ++(o == sdram::RowOutcome::kHit    ? cs_.row_hits
+       : o == sdram::RowOutcome::kMiss ? cs_.row_misses
+                                       : cs_.row_conflicts);
+  }
   // One command per cycle: a second one in the same cycle is an error.
   void check_one_command(sim::Cycle now) const {
     if (now <= last_command_) [[unlikely]]

@@ -3,7 +3,6 @@
 namespace voxcast::rtl::pipeline {
 
 using sdram::Command;
-using sdram::RowOutcome;
 using sim::Cycle;
 
 FastInOrderPort::FastInOrderPort(const sdram::DimmConfig& dimm,
@@ -25,7 +24,10 @@ FastInOrderPort::FastInOrderPort(const sdram::DimmConfig& dimm,
 // request's.
 VOXCAST_HOT_INLINE void FastInOrderPort::issue_head(Cycle now) {
   sdram::Completion& a = accesses_[pending_head_];
-  if (!head_started_) start_head(a, now);
+  if (!head_started_) {
+    first_command(a, head_cmd_, now);
+    head_started_ = true;
+  }
   check_one_command(now);
   const sdram::Address& address = a.request.address;
   switch (head_cmd_) {
@@ -54,19 +56,6 @@ VOXCAST_HOT_INLINE void FastInOrderPort::issue_head(Cycle now) {
     default:
       fail("unexpected command", now);
   }
-}
-
-// The request's first command tells how its row met its bank.
-VOXCAST_HOT_INLINE void FastInOrderPort::start_head(sdram::Completion& a, Cycle now) {
-  const RowOutcome o = head_cmd_ == Command::kRd    ? RowOutcome::kHit
-                       : head_cmd_ == Command::kAct ? RowOutcome::kMiss
-                                                    : RowOutcome::kConflict;
-  a.outcome = o;
-  a.first_command = now;
-  ++(o == RowOutcome::kHit    ? cs_.row_hits
-     : o == RowOutcome::kMiss ? cs_.row_misses
-                              : cs_.row_conflicts);
-  head_started_ = true;
 }
 
 VOXCAST_HOT_INLINE Cycle FastInOrderPort::next_wake(Cycle now) const {

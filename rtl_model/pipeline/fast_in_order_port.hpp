@@ -52,7 +52,6 @@ class FastInOrderPort final : public EventDrivenPort {
   void step(sim::Cycle now);
   // The oldest request's next command, at head_at_ (step() checked it).
   void issue_head(sim::Cycle now);
-  void start_head(sdram::Completion& a, sim::Cycle now);
   sim::Cycle next_wake(sim::Cycle now) const;
 
   // A request became the oldest (the queue was empty): its command and

@@ -8,7 +8,6 @@
 namespace voxcast::rtl::pipeline {
 
 using sdram::Command;
-using sdram::RowOutcome;
 using sim::Cycle;
 
 namespace {
@@ -87,15 +86,7 @@ std::size_t FastLookAheadPort::walk_window(Command& cmd) const {
 
 VOXCAST_HOT_INLINE void FastLookAheadPort::start(std::size_t at, Command cmd, Cycle now) {
   if (started_[at]) return;
-  sdram::Completion& c = accesses_[at];
-  const RowOutcome o = cmd == Command::kRd    ? RowOutcome::kHit
-                       : cmd == Command::kAct ? RowOutcome::kMiss
-                                              : RowOutcome::kConflict;
-  c.outcome = o;
-  c.first_command = now;
-  ++(o == RowOutcome::kHit    ? cs_.row_hits
-     : o == RowOutcome::kMiss ? cs_.row_misses
-                              : cs_.row_conflicts);
+  first_command(accesses_[at], cmd, now);
   started_[at] = 1;
 }
 

@@ -85,7 +85,7 @@ class FastLookAheadPort final : public EventDrivenPort {
   std::size_t walk_window(sdram::Command& cmd) const;
   void row_command(std::size_t at, sdram::Command cmd, sim::Cycle now);
   void column_command(sim::Cycle now);
-  // The request's first command tells how its row met its bank.
+  // The request at `at` had its first command unless started_ says so (first_command()).
   void start(std::size_t at, sdram::Command cmd, sim::Cycle now);
   bool row_wanted_by_another() const;
   sim::Cycle next_wake(sim::Cycle now);
